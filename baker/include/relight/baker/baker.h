@@ -1,0 +1,77 @@
+// The baker's front door: a scene in, a bake (the runtime's format) out, and
+// the float64 reference solve that every accuracy figure is measured against.
+//
+//   Baker baker(scene, options);          // mesh, Embree, form factors, factorise
+//   relight::Bake bake = baker.Bake();    // every luminaire, every SH term, quantised
+//   ReferenceResult ref = baker.Reference(settings);   // exact LIDs, no basis
+//
+// Both share the mesh and form factors, so a reference costs one extra solve.
+// Input errors throw SceneError; the baker may use exceptions and the heap.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "relight/bake.h"
+#include "relight/baker/scene.h"
+
+namespace relight::baker {
+
+struct BakeOptions {
+  std::optional<DirectModeKind> direct_mode;  // overrides every luminaire's mode when set
+  int threads = 0;                            // 0 = all cores
+  int lid_samples = 720;                      // M: gamma steps over 0..180 degrees (0.25 degree)
+  bool progress = false;                      // draw a progress bar on stderr
+};
+
+struct BakeReport {
+  size_t patches = 0, vertices = 0, triangles = 0, grid_points = 0;
+  size_t luminaires = 0, sh_terms = 0;  // terms summed over luminaires
+  double form_factor_seconds = 0, solve_seconds = 0, total_seconds = 0;
+};
+
+// One fixture's state for a reference solve (same meaning as the runtime's).
+struct FixtureSetting {
+  double pan_deg = 0, tilt_deg = 0;
+  double dimmer = 1;
+  Rgb colour{1, 1, 1};
+};
+
+struct ReferenceResult {
+  // Per vertex RGB luminance, cd/m^2: exact direct at the vertex plus the
+  // indirect averaged from adjacent patches (what the split mode approximates).
+  std::vector<Rgb> vertex_luminance;
+  // Per vertex RGB luminance, cd/m^2: total patch radiosity averaged from
+  // adjacent patches (what Dobashi's all-in-SH mode approximates).
+  std::vector<Rgb> vertex_luminance_patch_average;
+  // Per grid, per point RGB illuminance in lux: total and direct only.
+  std::vector<std::vector<Rgb>> grid_illuminance;
+  std::vector<std::vector<Rgb>> grid_direct_illuminance;
+};
+
+class Baker {
+ public:
+  Baker(const Scene& scene, const BakeOptions& options);
+  ~Baker();
+  Baker(const Baker&) = delete;
+  Baker& operator=(const Baker&) = delete;
+
+  // Bases for every luminaire at its SH degree, quantised into the runtime's format.
+  relight::Bake Bake();
+  // The scene lit by the exact distributions at `settings` (one per luminaire,
+  // in scene order), float64, no basis.
+  ReferenceResult Reference(const std::vector<FixtureSetting>& settings);
+  // Settings from the scene's defaults.
+  std::vector<FixtureSetting> DefaultSettings() const;
+
+  const BakeReport& report() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace relight::baker

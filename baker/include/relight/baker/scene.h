@@ -1,0 +1,98 @@
+// A scene as the lighting designer writes it (TOML + OBJ/MTL), in metres,
+// world z up. Parsed by LoadScene(); every input error is a SceneError that
+// names the file and line.
+#pragma once
+
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace relight::baker {
+
+using Vec3 = std::array<double, 3>;
+using Rgb = std::array<double, 3>;
+
+// Input error with the place it came from (pbrt's FileLoc idea).
+class SceneError : public std::runtime_error {
+ public:
+  SceneError(const std::string& file, int line, const std::string& what)
+      : std::runtime_error(file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " +
+                           what),
+        file_(file),
+        line_(line) {}
+  const std::string& file() const { return file_; }
+  int line() const { return line_; }
+
+ private:
+  std::string file_;
+  int line_;
+};
+
+// A planar convex polygon (triangle or quad from an inline quad, a box face
+// or an OBJ face), vertices counter-clockwise seen from the lit side.
+struct Surface {
+  std::string name;               // "floor", "box tall/+x", "sofa.obj:12"
+  std::vector<Vec3> corners;      // 3 or 4, planar, convex
+  Rgb reflectance{0.5, 0.5, 0.5};  // diffuse, each in [0, 1)
+};
+
+enum class LidKind { kIsotropic, kCosPower, kTable };
+
+// Rotationally symmetric luminous intensity distribution about the beam axis.
+struct Lid {
+  LidKind kind = LidKind::kIsotropic;
+  double peak_cd = 1000.0;        // isotropic and cos^k: intensity on the axis, candela
+  double exponent = 1.0;          // cos^k: k
+  double spread_deg = 90.0;       // cos^k: zero beyond this gamma (Dobashi Eq. 11)
+  std::vector<double> gamma_deg;  // table: strictly increasing, first 0
+  std::vector<double> candela;    // table: same length, >= 0
+  // Intensity in candela at angle gamma (degrees) from the axis. Table:
+  // linear between control points, 0 past the last one.
+  double Evaluate(double gamma_deg) const;
+};
+
+enum class MountingKind { kHanging, kStanding };
+enum class DirectModeKind { kExact, kAllInSh };
+
+struct Luminaire {
+  std::string name;
+  Vec3 position{0, 0, 0};
+  MountingKind mounting = MountingKind::kHanging;
+  double pan_deg = 0, tilt_deg = 0;  // default aim (see runtime/include/relight/bake.h for the convention)
+  double dimmer = 1.0;               // default, 0..1
+  Rgb colour{1, 1, 1};               // default, each 0..1
+  int sh_degree = 8;                 // N, 0..16
+  Lid lid;
+  int line = 0;                      // where it was declared, for messages
+};
+
+struct CalcGrid {
+  std::string name;
+  std::vector<Vec3> points;
+  std::vector<Vec3> normals;  // unit, one per point
+  int columns = 0, rows = 0;  // a rectangle's layout; 0, 0 for a list
+};
+
+struct Camera {
+  Vec3 position{0, 0, 0};
+  Vec3 target{0, 0, 1};
+  double fov_y_deg = 50;
+};
+
+struct Scene {
+  std::string name;
+  std::string path;                 // the TOML file
+  double patch_size_m = 0.25;       // target patch edge length for meshing
+  std::vector<Surface> surfaces;
+  std::vector<Luminaire> luminaires;
+  std::vector<CalcGrid> grids;
+  Camera camera;
+  double white_cd_m2 = 0;           // display white for tone mapping; 0 = choose automatically
+};
+
+// Parses a scene file. Relative OBJ paths resolve against the TOML's folder.
+// Throws SceneError (file:line: what was expected) on any bad input.
+Scene LoadScene(const std::string& toml_path);
+
+}  // namespace relight::baker

@@ -1,0 +1,120 @@
+// The bake: everything the runtime needs, as the runtime's own integer
+// formats. The baker fills a Bake and calls WriteBake(); the runtime calls
+// ReadBake() once at start-up (it allocates; nothing after it does).
+// The on-disk layout is specified in docs/bake-format.md and bake_format.h.
+//
+// Receiver sets: set 0 is the mesh's vertices (values in cd/m^2, luminance of
+// a diffuse surface); set k >= 1 is calculation grid k-1 (values in lux,
+// illuminance on the grid's plane).
+//
+// Thread safety: a Bake is plain data; ReadBake/WriteBake touch only their
+// arguments and may run concurrently on different objects.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "relight/fixed.h"
+#include "relight/status.h"
+
+namespace relight {
+
+// How a luminaire's light is split between the exact run-time direct term and
+// the SH basis (DESIGN.md "split direct from indirect").
+enum class DirectMode : uint8_t {
+  kExactDirect = 0,  // direct evaluated per receiver at run time, SH holds indirect only
+  kAllInSh = 1,      // Dobashi's original: SH holds direct + indirect
+};
+
+// How the fixture hangs. Beam axis at pan = tilt = 0: down (-z) when hanging,
+// up (+z) when standing. Tilt turns the beam towards +x of the panned frame;
+// pan turns about +z, counter-clockwise seen from above:
+//   hanging:  axis = (sin t cos p, sin t sin p, -cos t)
+//   standing: axis = (sin t cos p, sin t sin p, +cos t)
+enum class Mounting : uint8_t { kHanging = 0, kStanding = 1 };
+
+struct BakeMesh {
+  std::vector<int32_t> positions;   // Q16.16 metres, xyz per vertex
+  std::vector<int16_t> normals;     // Q1.14 unit vector per vertex
+  std::vector<uint16_t> albedo;     // RGB reflectance rho per vertex, 65535 = 1.0
+  std::vector<uint32_t> triangles;  // 3 vertex indices per triangle, CCW from the front
+  std::vector<uint32_t> triangle_surface;  // input surface index per triangle (picking)
+  std::vector<std::string> surface_names;  // per input surface
+  uint32_t vertex_count() const { return static_cast<uint32_t>(positions.size() / 3); }
+  uint32_t triangle_count() const { return static_cast<uint32_t>(triangles.size() / 3); }
+};
+
+struct BakeGrid {
+  std::string name;
+  uint32_t columns = 0, rows = 0;  // rows * columns == point count for a rectangle; 0, 0 for a list
+  std::vector<int32_t> points;     // Q16.16 metres, xyz per point
+  std::vector<int16_t> normals;    // Q1.14 per point
+  uint32_t point_count() const { return static_cast<uint32_t>(points.size() / 3); }
+};
+
+// A luminous intensity distribution, rotationally symmetric about the beam
+// axis, sampled at uniform gamma steps from 0 to 180 degrees inclusive.
+struct BakeLid {
+  std::vector<int64_t> candela;  // Q48.16 cd, sample k at gamma = 180 * k / (n - 1) degrees
+};
+
+// Per luminaire and receiver set.
+struct BakeLightReceivers {
+  // Exact direct term (empty in DirectMode::kAllInSh).
+  std::vector<int16_t> direction;  // Q1.14 unit vector luminaire -> receiver, world frame
+  std::vector<uint32_t> geometry;  // visibility * cos(receiver) / d^2, real = q * geometry_scale
+  QuantScale geometry_scale;       // m^-2 per LSB
+  // SH basis, term-major: basis[(t * count + r) * 3 + c], real = q * basis_scale[t * 3 + c].
+  // Units per candela of Y_t: cd/m^2 (vertices) or lux (grids).
+  std::vector<int16_t> basis;
+  std::vector<QuantScale> basis_scale;  // [term][channel]
+};
+
+struct BakeLuminaire {
+  std::string name;
+  int32_t position[3] = {0, 0, 0};  // Q16.16 metres
+  Mounting mounting = Mounting::kHanging;
+  DirectMode direct_mode = DirectMode::kExactDirect;
+  uint8_t sh_degree = 0;             // N; (N+1)^2 terms
+  int32_t default_pan = 0;           // Q16.16 degrees
+  int32_t default_tilt = 0;          // Q16.16 degrees
+  int16_t default_dimmer = 32767;    // Q1.15
+  int16_t default_rgb[3] = {32767, 32767, 32767};  // Q1.15
+  BakeLid lid;
+  std::vector<BakeLightReceivers> receivers;  // [receiver set]: vertices, then each grid
+};
+
+struct BakeCamera {
+  int32_t position[3] = {0, 0, 0};  // Q16.16 metres
+  int32_t target[3] = {0, 0, 0};    // Q16.16 metres
+  int32_t fov_y = 50 << 16;         // Q16.16 degrees, vertical
+};
+
+struct Bake {
+  std::string scene_name;
+  BakeMesh mesh;
+  std::vector<BakeGrid> grids;
+  std::vector<BakeLuminaire> luminaires;
+  BakeCamera camera;
+  int32_t white_luminance = 100 << kLightFracBits;  // LightQ12 cd/m^2 mapped to display white
+
+  uint32_t receiver_set_count() const { return 1 + static_cast<uint32_t>(grids.size()); }
+  uint32_t receiver_count(uint32_t set) const {
+    return set == 0 ? mesh.vertex_count() : grids[set - 1].point_count();
+  }
+};
+
+// Writes atomically: a temporary file beside `path`, fsync, rename. On any
+// error the previous file at `path` (if any) is untouched.
+// Returns kOk, kInvalidArgument (inconsistent sizes, named), kIoError.
+Status WriteBake(const Bake& bake, const std::string& path);
+
+// Reads and fully validates a bake: sizes, checksums, counts, index ranges,
+// degrees, scales. Returns kOk, kNotFound, kIoError, kCorrupt (what and
+// where), kUnsupported (newer version). `out` is only written on success.
+Status ReadBake(const std::string& path, Bake* out);
+// Same, from bytes in memory (used by tests and fuzzing).
+Status ParseBake(const uint8_t* data, size_t size, Bake* out);
+
+}  // namespace relight

@@ -1,0 +1,32 @@
+// Integer-only elementary functions for the runtime: square root, sine and
+// cosine, atan2. Angles are binary angles (BAM): a uint32 where 2^32 is one
+// full turn, so wrap-around is free. All functions are exact integer code
+// (no float anywhere) and deterministic across platforms. Thread-safe.
+#pragma once
+
+#include <cstdint>
+
+#include "relight/fixed.h"
+
+namespace relight {
+
+using Bam = uint32_t;  // 2^32 = 360 degrees
+
+// floor(sqrt(v)).
+uint32_t ISqrt64(uint64_t v);
+uint64_t ISqrt128(unsigned __int128 v);
+
+// Degrees (Q16.16) to a binary angle, rounded; any value wraps.
+Bam DegreesToBam(Q16_16 degrees);
+// A binary angle to degrees in (-180, 180], Q16.16.
+Q16_16 BamToDegrees(Bam angle);
+
+// sin and cos of a binary angle, max error 2 LSB of Q1.30.
+void SinCosQ30(Bam angle, Q1_30* sin_out, Q1_30* cos_out);
+// atan2(y, x) as a binary angle; y, x any scale (same for both), not both 0.
+Bam Atan2Bam(int64_t y, int64_t x);
+
+// Unit vector (Q1.30) of an integer vector of any scale, not all zero.
+void NormaliseQ30(const int64_t v[3], int32_t out_q30[3]);
+
+}  // namespace relight
