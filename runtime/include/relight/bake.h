@@ -77,6 +77,7 @@ struct BakeLuminaire {
   Mounting mounting = Mounting::kHanging;
   DirectMode direct_mode = DirectMode::kExactDirect;
   uint8_t sh_degree = 0;             // N; (N+1)^2 terms
+  uint8_t use_sigma = 1;             // damp the Legendre series with sigma(N, l) (Dobashi Eq. 12-13)
   int32_t default_pan = 0;           // Q16.16 degrees
   int32_t default_tilt = 0;          // Q16.16 degrees
   int16_t default_dimmer = 32767;    // Q1.15

@@ -63,6 +63,7 @@ struct Luminaire {
   double dimmer = 1.0;               // default, 0..1
   Rgb colour{1, 1, 1};               // default, each 0..1
   int sh_degree = 8;                 // N, 0..16
+  bool use_sigma = true;             // sigma factor on the Legendre series (Dobashi Eq. 13)
   Lid lid;
   int line = 0;                      // where it was declared, for messages
 };
