@@ -18,6 +18,11 @@
 
 namespace relight {
 
+// 128-bit integers for control-rate products (GCC/Clang on 64-bit targets).
+// __extension__ keeps -Wpedantic quiet; use these names, not __int128.
+__extension__ typedef __int128 Int128;
+__extension__ typedef unsigned __int128 UInt128;
+
 template <typename Int, int Frac>
 class Fixed {
   static_assert(std::is_integral<Int>::value && std::is_signed<Int>::value, "signed storage");
@@ -46,10 +51,10 @@ class Fixed {
   }
   // a / b as a rational, rounded to nearest; b != 0.
   static constexpr Fixed FromRatio(int64_t num, int64_t den) {
-    const __int128 scaled = static_cast<__int128>(num) * (static_cast<__int128>(1) << Frac);
-    const __int128 half = (den > 0 ? den : -den) / 2;
+    const Int128 scaled = static_cast<Int128>(num) * (static_cast<Int128>(1) << Frac);
+    const Int128 half = (den > 0 ? den : -den) / 2;
     const bool negative = (scaled < 0) != (den < 0);
-    const __int128 q = (scaled + (negative == (den > 0) ? -half : half)) / den;
+    const Int128 q = (scaled + (negative == (den > 0) ? -half : half)) / den;
     return FromRaw(SaturateRaw(q));
   }
 
@@ -58,17 +63,17 @@ class Fixed {
   // Re-express in another format: shifts with round-to-nearest, saturates.
   template <typename Int2, int Frac2>
   constexpr Fixed<Int2, Frac2> To() const {
-    __int128 v = raw_;
+    Int128 v = raw_;
     if (Frac2 >= Frac) {
-      v *= static_cast<__int128>(1) << (Frac2 - Frac);
+      v *= static_cast<Int128>(1) << (Frac2 - Frac);
     } else {
       const int sh = Frac - Frac2;
-      v = (v + (static_cast<__int128>(1) << (sh - 1))) >> sh;
+      v = (v + (static_cast<Int128>(1) << (sh - 1))) >> sh;
     }
     return Fixed<Int2, Frac2>::FromRaw(Fixed<Int2, Frac2>::SaturateRaw(v));
   }
 
-  static constexpr Int SaturateRaw(__int128 v) {
+  static constexpr Int SaturateRaw(Int128 v) {
     if (v > std::numeric_limits<Int>::max()) return std::numeric_limits<Int>::max();
     if (v < std::numeric_limits<Int>::min()) return std::numeric_limits<Int>::min();
     return static_cast<Int>(v);
@@ -82,12 +87,12 @@ class Fixed {
   friend constexpr bool operator>=(Fixed a, Fixed b) { return a.raw_ >= b.raw_; }
   // Same-format add/subtract saturate.
   friend constexpr Fixed operator+(Fixed a, Fixed b) {
-    return FromRaw(SaturateRaw(static_cast<__int128>(a.raw_) + b.raw_));
+    return FromRaw(SaturateRaw(static_cast<Int128>(a.raw_) + b.raw_));
   }
   friend constexpr Fixed operator-(Fixed a, Fixed b) {
-    return FromRaw(SaturateRaw(static_cast<__int128>(a.raw_) - b.raw_));
+    return FromRaw(SaturateRaw(static_cast<Int128>(a.raw_) - b.raw_));
   }
-  constexpr Fixed operator-() const { return FromRaw(SaturateRaw(-static_cast<__int128>(raw_))); }
+  constexpr Fixed operator-() const { return FromRaw(SaturateRaw(-static_cast<Int128>(raw_))); }
 
  private:
   Int raw_ = 0;
@@ -98,13 +103,13 @@ class Fixed {
 // overflows before the final saturation.
 template <typename R, typename A, typename B>
 constexpr R MulFixed(A a, B b) {
-  const __int128 p = static_cast<__int128>(a.raw()) * b.raw();
+  const Int128 p = static_cast<Int128>(a.raw()) * b.raw();
   const int sh = A::kFracBits + B::kFracBits - R::kFracBits;
-  __int128 v;
+  Int128 v;
   if (sh > 0) {
-    v = (p + (static_cast<__int128>(1) << (sh - 1))) >> sh;
+    v = (p + (static_cast<Int128>(1) << (sh - 1))) >> sh;
   } else {
-    v = p * (static_cast<__int128>(1) << (-sh));
+    v = p * (static_cast<Int128>(1) << (-sh));
   }
   return R::FromRaw(R::SaturateRaw(v));
 }

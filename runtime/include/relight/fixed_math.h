@@ -14,7 +14,7 @@ using Bam = uint32_t;  // 2^32 = 360 degrees
 
 // floor(sqrt(v)).
 uint32_t ISqrt64(uint64_t v);
-uint64_t ISqrt128(unsigned __int128 v);
+uint64_t ISqrt128(UInt128 v);
 
 // Degrees (Q16.16) to a binary angle, rounded; any value wraps.
 Bam DegreesToBam(Q16_16 degrees);

@@ -1,0 +1,38 @@
+// The facade every input backend sits behind. A source yields timestamped
+// parameter changes; the daemon or tool polls it once per control tick.
+// Public non-virtual methods call private virtual Do...() ones (STYLE.md 3).
+//
+// Thread safety: one thread drives a source. Errors are Status values.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "relight/hal/param_change.h"
+#include "relight/status.h"
+
+namespace relight::hal {
+
+class InputSource {
+ public:
+  virtual ~InputSource() = default;
+
+  // Opens files, devices or sockets. A missing device or a broken script is
+  // an error here, at start-up, never later.
+  Status Start() { return DoStart(); }
+  // Moves the changes due at or before now_us (the source's clock) into
+  // out[0..capacity) in time order; returns how many. Changes that do not fit
+  // stay queued for the next call.
+  size_t Poll(int64_t now_us, ParamChange* out, size_t capacity) { return DoPoll(now_us, out, capacity); }
+  // True once a finite source (a replay script) has nothing more to give.
+  bool Finished() const { return DoFinished(); }
+  const char* Name() const { return DoName(); }
+
+ private:
+  virtual Status DoStart() = 0;
+  virtual size_t DoPoll(int64_t now_us, ParamChange* out, size_t capacity) = 0;
+  virtual bool DoFinished() const { return false; }
+  virtual const char* DoName() const = 0;
+};
+
+}  // namespace relight::hal

@@ -1,0 +1,39 @@
+// Replay backend: a timed text script of parameter changes, the simulated
+// hardware for demos, integration tests and integrators without a console.
+//
+//   # seconds  changes (FIXTURE.PARAM=VALUE, as --set)
+//   0.0   ceiling_spot.pan=0  ceiling_spot.tilt=20
+//   1.5   ceiling_spot.pan=35 corner_uplight.colour=1,0.55,0.25
+//
+// Times are seconds from the start of the script, non-decreasing. The whole
+// script is read and checked at Start(); an error names file:line.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "relight/hal/input_source.h"
+
+namespace relight::hal {
+
+class ReplaySource final : public InputSource {
+ public:
+  explicit ReplaySource(std::string path) : path_(std::move(path)) {}
+  // Script time of the last change, microseconds (valid after Start()).
+  int64_t duration_us() const { return changes_.empty() ? 0 : changes_.back().time_us; }
+
+ private:
+  Status DoStart() override;
+  size_t DoPoll(int64_t now_us, ParamChange* out, size_t capacity) override;
+  bool DoFinished() const override { return next_ >= changes_.size(); }
+  const char* DoName() const override { return "replay"; }
+
+  std::string path_;
+  std::vector<ParamChange> changes_;
+  size_t next_ = 0;
+};
+
+// Parses script text (for tests and for Start()). `where` names the source in errors.
+Status ParseReplayScript(const std::string& text, const std::string& where, std::vector<ParamChange>* out);
+
+}  // namespace relight::hal

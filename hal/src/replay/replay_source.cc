@@ -1,0 +1,82 @@
+#include "relight/hal/replay_source.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
+
+namespace relight::hal {
+
+Status ParseReplayScript(const std::string& text, const std::string& where, std::vector<ParamChange>* out) {
+  std::vector<ParamChange> changes;
+  std::istringstream lines(text);
+  std::string line;
+  int line_no = 0;
+  int64_t last_us = 0;
+  while (std::getline(lines, line)) {
+    ++line_no;
+    if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    std::istringstream words(line);
+    std::string time_text;
+    if (!(words >> time_text)) continue;  // blank or comment
+    const auto fail = [&](const std::string& why) {
+      return Status(StatusCode::kInvalidArgument, where + ":" + std::to_string(line_no) + ": " + why);
+    };
+    errno = 0;
+    char* end = nullptr;
+    const double seconds = std::strtod(time_text.c_str(), &end);
+    if (errno != 0 || end != time_text.c_str() + time_text.size() || !std::isfinite(seconds) || seconds < 0 ||
+        seconds > 1e7) {
+      return fail("expected a time in seconds (0 or more) at the start of the line, got '" + time_text + "'");
+    }
+    const int64_t time_us = std::llround(seconds * 1e6);
+    if (time_us < last_us) return fail("time " + time_text + " s goes backwards (times must not decrease)");
+    last_us = time_us;
+    std::string item;
+    int items = 0;
+    while (words >> item) {
+      ParamChange parsed[3];
+      std::string error;
+      const int n = ParseParamText(item, time_us, parsed, &error);
+      if (n == 0) return fail(error);
+      changes.insert(changes.end(), parsed, parsed + n);
+      ++items;
+    }
+    if (items == 0) return fail("a time needs at least one FIXTURE.PARAM=VALUE after it");
+  }
+  *out = std::move(changes);
+  return Status::Ok();
+}
+
+Status ReplaySource::DoStart() {
+  std::FILE* f = std::fopen(path_.c_str(), "rb");
+  if (f == nullptr) {
+    return Status(errno == ENOENT ? StatusCode::kNotFound : StatusCode::kIoError,
+                  "replay script '" + path_ + "': " + std::strerror(errno));
+  }
+  std::string text;
+  char buf[4096];
+  size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) {
+    text.append(buf, n);
+    if (text.size() > (64u << 20)) {
+      std::fclose(f);
+      return Status(StatusCode::kInvalidArgument, "replay script '" + path_ + "': larger than 64 MiB");
+    }
+  }
+  std::fclose(f);
+  next_ = 0;
+  return ParseReplayScript(text, path_, &changes_);
+}
+
+size_t ReplaySource::DoPoll(int64_t now_us, ParamChange* out, size_t capacity) {
+  size_t count = 0;
+  while (next_ < changes_.size() && count < capacity && changes_[next_].time_us <= now_us) {
+    out[count++] = changes_[next_++];
+  }
+  return count;
+}
+
+}  // namespace relight::hal

@@ -1,0 +1,60 @@
+#include "replay_frames.h"
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "relight/hal/replay_source.h"
+#include "set_args.h"
+
+namespace relight::cli {
+namespace {
+
+bool PatternHasOneNumber(const std::string& pattern) {
+  const size_t pct = pattern.find('%');
+  if (pct == std::string::npos || pattern.find('%', pct + 1) != std::string::npos) return false;
+  const size_t d = pattern.find('d', pct);
+  return d != std::string::npos && pattern.find_first_not_of("0123456789", pct + 1) == d;
+}
+
+}  // namespace
+
+int RenderReplay(Engine& engine, const std::string& script_path, double fps, const std::string& pattern,
+                 const std::function<int(const std::string&)>& render_to) {
+  if (!PatternHasOneNumber(pattern)) {
+    std::fprintf(stderr, "relight-render: error: with --replay, -o needs one %%d (e.g. frame_%%04d.png), got '%s'\n",
+                 pattern.c_str());
+    return 2;
+  }
+  hal::ReplaySource source(script_path);
+  if (Status st = source.Start(); !st.ok()) {
+    std::fprintf(stderr, "relight-render: error: %s\n", st.ToString().c_str());
+    return 2;
+  }
+  const int64_t frame_us = std::llround(1e6 / fps);
+  const int frames = static_cast<int>(source.duration_us() / frame_us) + 1;
+  std::vector<hal::ParamChange> changes(256);
+  for (int i = 0; i < frames; ++i) {
+    const int64_t now_us = static_cast<int64_t>(i) * frame_us;
+    size_t n;
+    while ((n = source.Poll(now_us, changes.data(), changes.size())) > 0) {
+      for (size_t k = 0; k < n; ++k) {
+        std::string error;
+        if (!ApplyChange(engine, changes[k], &error)) {
+          std::fprintf(stderr, "relight-render: error: %s at %.3f s: %s\n", script_path.c_str(),
+                       changes[k].time_us / 1e6, error.c_str());
+          return 2;
+        }
+      }
+    }
+    char path[4096];
+    std::snprintf(path, sizeof path, pattern.c_str(), i);
+    if (int rc = render_to(path); rc != 0) return rc;
+    std::printf("\rrelight-render: frame %d/%d (t = %.2f s) -> %s", i + 1, frames, now_us / 1e6, path);
+    std::fflush(stdout);
+  }
+  std::printf("\nrelight-render: wrote %d frames from %s\n", frames, script_path.c_str());
+  return 0;
+}
+
+}  // namespace relight::cli

@@ -1,0 +1,109 @@
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "relight/hal/param_change.h"
+#include "relight/hal/replay_source.h"
+
+namespace relight::hal {
+namespace {
+
+TEST(ParamText, ParsesEachParameterInItsFormat) {
+  ParamChange c[3];
+  std::string error;
+  ASSERT_EQ(ParseParamText("spot1.pan=30", 7, c, &error), 1) << error;
+  EXPECT_STREQ(c[0].fixture, "spot1");
+  EXPECT_EQ(c[0].param, Param::kPan);
+  EXPECT_EQ(c[0].value, 30 * 65536);
+  EXPECT_EQ(c[0].time_us, 7);
+  ASSERT_EQ(ParseParamText("spot1.tilt=-12.5", 0, c, &error), 1);
+  EXPECT_EQ(c[0].value, -12 * 65536 - 32768);
+  ASSERT_EQ(ParseParamText("a.dimmer=0.5", 0, c, &error), 1);
+  EXPECT_EQ(c[0].value, 16384);  // 0.5 * 32767 rounded
+  ASSERT_EQ(ParseParamText("a.dimmer=100%", 0, c, &error), 1);
+  EXPECT_EQ(c[0].value, 32767);
+  ASSERT_EQ(ParseParamText("wash-2.colour=1,0.5,0", 0, c, &error), 3);
+  EXPECT_EQ(c[0].param, Param::kRed);
+  EXPECT_EQ(c[0].value, 32767);
+  EXPECT_EQ(c[1].param, Param::kGreen);
+  EXPECT_EQ(c[1].value, 16384);
+  EXPECT_EQ(c[2].param, Param::kBlue);
+  EXPECT_EQ(c[2].value, 0);
+}
+
+TEST(ParamText, RejectsBadTextWithAMessage) {
+  ParamChange c[3];
+  const char* bad[] = {"spot1", "spot1.pan", ".pan=3", "spot1.zoom=3", "spot1.pan=abc", "spot1.pan=1000",
+                       "spot1.dimmer=1.5", "spot1.colour=1,2", "spot1.colour=1,0,0,0", "sp ot.pan=1",
+                       "spot1.r=-0.1", "spot1.pan=nan"};
+  for (const char* text : bad) {
+    std::string error;
+    EXPECT_EQ(ParseParamText(text, 0, c, &error), 0) << text;
+    EXPECT_NE(error.find(text), std::string::npos) << "message should quote the input: " << error;
+  }
+}
+
+TEST(ReplayScript, ParsesTimedChangesInOrder) {
+  std::vector<ParamChange> changes;
+  const std::string text =
+      "# a show\n"
+      "0     a.dimmer=1   b.pan=10\n"
+      "\n"
+      "0.5   b.pan=20 # half a second in\n"
+      "2     b.colour=1,0,0\n";
+  ASSERT_TRUE(ParseReplayScript(text, "show.replay", &changes).ok());
+  ASSERT_EQ(changes.size(), 6u);
+  EXPECT_EQ(changes[2].time_us, 500000);
+  EXPECT_EQ(changes[2].value, 20 * 65536);
+  EXPECT_EQ(changes[5].time_us, 2000000);
+  EXPECT_EQ(changes[5].param, Param::kBlue);
+}
+
+TEST(ReplayScript, ErrorsNameFileAndLine) {
+  std::vector<ParamChange> changes;
+  Status st = ParseReplayScript("0 a.pan=1\n1 b.tilt=x\n", "show.replay", &changes);
+  EXPECT_FALSE(st.ok());
+  EXPECT_NE(st.message().find("show.replay:2:"), std::string::npos) << st.message();
+  st = ParseReplayScript("1 a.pan=1\n0.5 a.pan=2\n", "s", &changes);
+  EXPECT_NE(st.message().find("s:2:"), std::string::npos) << st.message();
+  EXPECT_NE(st.message().find("backwards"), std::string::npos) << st.message();
+  st = ParseReplayScript("soon a.pan=1\n", "s", &changes);
+  EXPECT_NE(st.message().find("s:1:"), std::string::npos) << st.message();
+  st = ParseReplayScript("3\n", "s", &changes);
+  EXPECT_FALSE(st.ok());
+}
+
+TEST(ReplaySource, PollsDueChangesAndKeepsTheRestQueued) {
+  const std::string path = ::testing::TempDir() + "/replay_source_test.replay";
+  {
+    std::ofstream f(path);
+    f << "0 a.pan=1 a.tilt=2 a.dimmer=0.25\n1 a.pan=3\n";
+  }
+  ReplaySource source(path);
+  ASSERT_TRUE(source.Start().ok());
+  EXPECT_EQ(source.duration_us(), 1000000);
+  ParamChange out[2];
+  EXPECT_EQ(source.Poll(0, out, 2), 2u);  // capacity bound: third stays queued
+  EXPECT_EQ(out[1].param, Param::kTilt);
+  EXPECT_EQ(source.Poll(0, out, 2), 1u);
+  EXPECT_EQ(out[0].param, Param::kDimmer);
+  EXPECT_EQ(source.Poll(999999, out, 2), 0u);
+  EXPECT_FALSE(source.Finished());
+  EXPECT_EQ(source.Poll(1000000, out, 2), 1u);
+  EXPECT_EQ(out[0].value, 3 * 65536);
+  EXPECT_TRUE(source.Finished());
+  std::remove(path.c_str());
+}
+
+TEST(ReplaySource, MissingFileIsNotFoundAtStart) {
+  ReplaySource source("/nonexistent/show.replay");
+  const Status st = source.Start();
+  EXPECT_EQ(st.code(), StatusCode::kNotFound);
+  EXPECT_NE(st.message().find("/nonexistent/show.replay"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace relight::hal
