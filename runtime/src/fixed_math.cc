@@ -1,0 +1,251 @@
+// Integer square roots, sin/cos and atan2 on binary angles (fixed_math.h).
+//
+// sin/cos: exact octant reduction of the binary angle, then Taylor series on
+// [0, pi/4] at Q2.61 (Horner form, 10 terms: the first dropped term is below
+// 2^-62), rounded once to Q1.30. atan2: CORDIC vectoring at ~2^60 scale with
+// a compile-time table of atan(2^-i) derived from integer series, so the
+// result rounds once to the BAM. No float anywhere.
+#include "relight/fixed_math.h"
+
+#include <array>
+
+#include "fixed_math_internal.h"
+
+namespace relight {
+namespace {
+
+using internal::DivRound;
+using internal::i128;
+using internal::kOneQ61;
+using internal::kPiQ61;
+using internal::RoundShift;
+using internal::u128;
+
+constexpr int kTaylorTerms = 10;
+
+// sin(x), x in [0, pi/4], Q2.61: x (1 - x^2/(2*3) (1 - x^2/(4*5) (...))).
+int64_t SinSmallQ61(int64_t x_q61) {
+  const i128 x2 = RoundShift(static_cast<i128>(x_q61) * x_q61, 61);
+  i128 t = kOneQ61;
+  for (int k = kTaylorTerms; k >= 1; --k) {
+    t = kOneQ61 - DivRound(RoundShift(x2 * t, 61), (2 * k) * (2 * k + 1));
+  }
+  return static_cast<int64_t>(RoundShift(x_q61 * t, 61));
+}
+
+// cos(x), x in [0, pi/4], Q2.61: 1 - x^2/(1*2) (1 - x^2/(3*4) (...)).
+int64_t CosSmallQ61(int64_t x_q61) {
+  const i128 x2 = RoundShift(static_cast<i128>(x_q61) * x_q61, 61);
+  i128 t = kOneQ61;
+  for (int k = kTaylorTerms; k >= 1; --k) {
+    t = kOneQ61 - DivRound(RoundShift(x2 * t, 61), (2 * k - 1) * (2 * k));
+  }
+  return static_cast<int64_t>(t);
+}
+
+// --- CORDIC table: atan(2^-i) in BAM units with 16 extra fraction bits.
+constexpr int kCordicSteps = 40;
+constexpr int kAngleFrac = 16;
+
+// atan(2^-i) in Q62 by its alternating series (every power of 2^-i is exact).
+constexpr i128 AtanPow2Q62(int i) {
+  i128 sum = 0;
+  for (int n = 0;; ++n) {
+    const int exponent = 62 - i * (2 * n + 1);
+    if (exponent < 0) break;
+    const i128 term = DivRound(static_cast<i128>(1) << exponent, 2 * n + 1);
+    sum += (n % 2 == 0) ? term : -term;
+  }
+  return sum;
+}
+
+constexpr std::array<int64_t, kCordicSteps> MakeAtanTable() {
+  std::array<int64_t, kCordicSteps> table{};
+  table[0] = int64_t{1} << (29 + kAngleFrac);  // 45 degrees = 2^29 BAM, exactly
+  for (int i = 1; i < kCordicSteps; ++i) {
+    // BAM = rad * 2^31 / pi; with kPiQ61 and a Q62 angle: q62 * 2^(30+frac) / kPiQ61.
+    table[i] = static_cast<int64_t>(
+        DivRound(AtanPow2Q62(i) * (static_cast<i128>(1) << (30 + kAngleFrac)), kPiQ61));
+  }
+  return table;
+}
+
+constexpr std::array<int64_t, kCordicSteps> kAtanTable = MakeAtanTable();
+
+int HighestBit(uint64_t v) { return 63 - __builtin_clzll(v); }
+
+}  // namespace
+
+namespace internal {
+
+void SinCosTurnQ61(uint64_t num, uint64_t den, int64_t* sin_q61, int64_t* cos_q61) {
+  num %= den;
+  const uint64_t eighths = num * 8;  // < 2^35
+  const uint64_t octant = eighths / den;
+  uint64_t rest = eighths % den;      // angle within the octant = rest/den * pi/4
+  if (octant & 1) rest = den - rest;  // odd octants measure from the next multiple of pi/4
+  const int64_t x =
+      static_cast<int64_t>(DivRound(static_cast<i128>(rest) * kPiQ61, 4 * static_cast<i128>(den)));
+  const int64_t s = SinSmallQ61(x), c = CosSmallQ61(x);
+  switch (octant) {
+    case 0:
+      *sin_q61 = s;
+      *cos_q61 = c;
+      break;
+    case 1:
+      *sin_q61 = c;
+      *cos_q61 = s;
+      break;
+    case 2:
+      *sin_q61 = c;
+      *cos_q61 = -s;
+      break;
+    case 3:
+      *sin_q61 = s;
+      *cos_q61 = -c;
+      break;
+    case 4:
+      *sin_q61 = -s;
+      *cos_q61 = -c;
+      break;
+    case 5:
+      *sin_q61 = -c;
+      *cos_q61 = -s;
+      break;
+    case 6:
+      *sin_q61 = -c;
+      *cos_q61 = s;
+      break;
+    default:
+      *sin_q61 = -s;
+      *cos_q61 = c;
+      break;
+  }
+}
+
+}  // namespace internal
+
+uint32_t ISqrt64(uint64_t v) {
+  // Digit-by-digit (binary restoring) square root: exact floor.
+  uint64_t rem = v, root = 0, bit = uint64_t{1} << 62;
+  while (bit > v) bit >>= 2;
+  while (bit != 0) {
+    if (rem >= root + bit) {
+      rem -= root + bit;
+      root = (root >> 1) + bit;
+    } else {
+      root >>= 1;
+    }
+    bit >>= 2;
+  }
+  return static_cast<uint32_t>(root);
+}
+
+uint64_t ISqrt128(u128 v) {
+  u128 rem = v, root = 0, bit = static_cast<u128>(1) << 126;
+  while (bit > v) bit >>= 2;
+  while (bit != 0) {
+    if (rem >= root + bit) {
+      rem -= root + bit;
+      root = (root >> 1) + bit;
+    } else {
+      root >>= 1;
+    }
+    bit >>= 2;
+  }
+  return static_cast<uint64_t>(root);
+}
+
+Bam DegreesToBam(Q16_16 degrees) {
+  // BAM = deg * 2^32 / 360 = raw * 2^16 / 360 = raw * 8192 / 45, rounded.
+  const int64_t num = static_cast<int64_t>(degrees.raw()) * 8192;
+  // Floor division of (2 num + 45) by 90: round half up, negatives included.
+  const int64_t twice = 2 * num + 45;
+  int64_t q = twice / 90;
+  if (twice % 90 != 0 && twice < 0) --q;
+  return static_cast<Bam>(static_cast<uint64_t>(q));  // wraps modulo a turn
+}
+
+Q16_16 BamToDegrees(Bam angle) {
+  if (angle == 0x80000000u) return Q16_16::FromInt(180);
+  // Signed view: (-2^31, 2^31) BAM = (-180, 180) degrees; raw = s * 45 / 8192.
+  const int64_t s = static_cast<int32_t>(angle);
+  const int64_t twice = 2 * s * 45 + 8192;
+  int64_t q = twice / 16384;
+  if (twice % 16384 != 0 && twice < 0) --q;
+  if (q <= -180 * 65536) q = 180 * 65536;  // rounding may land on -180: report +180
+  return Q16_16::FromRaw(static_cast<int32_t>(q));
+}
+
+void SinCosQ30(Bam angle, Q1_30* sin_out, Q1_30* cos_out) {
+  int64_t s = 0, c = 0;
+  internal::SinCosTurnQ61(angle, uint64_t{1} << 32, &s, &c);
+  *sin_out = Q1_30::FromRaw(static_cast<int32_t>(RoundShift(s, 31)));
+  *cos_out = Q1_30::FromRaw(static_cast<int32_t>(RoundShift(c, 31)));
+}
+
+Bam Atan2Bam(int64_t y, int64_t x) {
+  // Axes exactly (CORDIC would land within a fraction of a BAM anyway).
+  if (y == 0) return x >= 0 ? 0u : 0x80000000u;
+  if (x == 0) return y > 0 ? 0x40000000u : 0xC0000000u;
+  // Work on |x|, |y| (first quadrant), scaled so the larger is in [2^59, 2^60):
+  // the CORDIC gain 1.65 times sqrt(2) then stays below 2^62.
+  uint64_t ux = x < 0 ? 0 - static_cast<uint64_t>(x) : static_cast<uint64_t>(x);
+  uint64_t uy = y < 0 ? 0 - static_cast<uint64_t>(y) : static_cast<uint64_t>(y);
+  const int top = HighestBit(ux > uy ? ux : uy);
+  if (top > 59) {
+    ux >>= top - 59;
+    uy >>= top - 59;
+  } else {
+    ux <<= 59 - top;
+    uy <<= 59 - top;
+  }
+  int64_t cx = static_cast<int64_t>(ux), cy = static_cast<int64_t>(uy);
+  int64_t z = 0;  // BAM with kAngleFrac extra bits
+  for (int i = 0; i < kCordicSteps; ++i) {
+    const int64_t dx = cy >> i, dy = cx >> i;
+    if (cy > 0) {
+      cx += dx;
+      cy -= dy;
+      z += kAtanTable[i];
+    } else {
+      cx -= dx;
+      cy += dy;
+      z -= kAtanTable[i];
+    }
+  }
+  const uint32_t first = static_cast<uint32_t>(RoundShift(z, kAngleFrac));  // [0, 2^30]
+  uint32_t bam = first;
+  if (x < 0) bam = 0x80000000u - first;  // pi - a
+  if (y < 0) bam = 0u - bam;             // mirror below the x axis
+  return bam;
+}
+
+void NormaliseQ30(const int64_t v[3], int32_t out_q30[3]) {
+  // Scale so the largest |component| is in [2^49, 2^50): the squared norm fits
+  // 128 bits and its square root carries ~49 significant bits.
+  uint64_t mag[3];
+  uint64_t largest = 0;
+  for (int i = 0; i < 3; ++i) {
+    mag[i] = v[i] < 0 ? 0 - static_cast<uint64_t>(v[i]) : static_cast<uint64_t>(v[i]);
+    if (mag[i] > largest) largest = mag[i];
+  }
+  if (largest == 0) {
+    out_q30[0] = out_q30[1] = out_q30[2] = 0;
+    return;
+  }
+  const int top = HighestBit(largest);
+  i128 scaled[3];
+  for (int i = 0; i < 3; ++i) {
+    const uint64_t m = top > 49 ? (mag[i] >> (top - 49)) : (mag[i] << (49 - top));
+    scaled[i] = v[i] < 0 ? -static_cast<i128>(m) : static_cast<i128>(m);
+  }
+  const u128 norm2 =
+      static_cast<u128>(scaled[0] * scaled[0] + scaled[1] * scaled[1] + scaled[2] * scaled[2]);
+  const i128 norm = ISqrt128(norm2);
+  for (int i = 0; i < 3; ++i) {
+    out_q30[i] = internal::SaturateI32(DivRound(scaled[i] * (static_cast<i128>(1) << 30), norm));
+  }
+}
+
+}  // namespace relight

@@ -11,9 +11,10 @@
 
 namespace relight {
 
-// f_l(gamma_k) * dgamma = P_l(cos gamma_k) sin(gamma_k) * pi / M, Q1.30, laid
-// out [l][k] with (degree+1) * (M+1) entries (Dobashi Eq. 20, the table the
-// paper suggests storing).
+// f_l(gamma_k) = P_l(cos gamma_k) sin(gamma_k), Q1.30, laid out [l][k] with
+// (degree+1) * (M+1) entries (Dobashi Eq. 20, the table the paper suggests
+// storing). dgamma = pi/M is applied by the functions below at 128 bits: a
+// table of f_l * dgamma would waste log2(M/pi) bits of Q1.30 (~6 at M = 180).
 // Returns kInvalidArgument if M < 2 or degree outside [0, kMaxShDegree].
 Status BuildLegendreTableQ30(int degree, int M, int32_t* table_q30);
 
