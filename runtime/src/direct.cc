@@ -1,0 +1,70 @@
+// The exact direct term (see direct.h).
+#include "direct.h"
+
+#include <cstddef>
+
+#include "lid_lookup.h"
+#include "relight/fixed_math.h"
+#include "round_shift.h"
+
+namespace relight {
+
+void ReflectanceOverPiQ32(const uint16_t* albedo, uint32_t value_count, uint32_t* out_q32) {
+  for (uint32_t i = 0; i < value_count; ++i) {
+    // albedo / 65535 * 2^32 / pi, rounded; < 2^47 before the division.
+    const uint64_t num = static_cast<uint64_t>(albedo[i]) * kInvPiQ32;
+    out_q32[i] = static_cast<uint32_t>((num + 65535 / 2) / 65535);
+  }
+}
+
+int64_t DirectIlluminanceQ20(const int16_t direction_q14[3], uint32_t geometry,
+                             QuantScale geometry_scale, const int32_t axis_q30[3],
+                             const int64_t* lid_q16, int lid_m) {
+  if (geometry == 0 || geometry_scale.mantissa == 0) return 0;
+  int64_t d[3];
+  for (int i = 0; i < 3; ++i) d[i] = static_cast<int64_t>(direction_q14[i]) * (int64_t{1} << 16);
+  const int64_t a[3] = {axis_q30[0], axis_q30[1], axis_q30[2]};
+  if ((d[0] | d[1] | d[2]) == 0) return 0;
+  // Q2.60: each product <= 2^60 (+ a few LSB of the axis), the sum < 2^62.
+  const int64_t cos_q60 = d[0] * a[0] + d[1] * a[1] + d[2] * a[2];
+  const int64_t cx = d[1] * a[2] - d[2] * a[1];
+  const int64_t cy = d[2] * a[0] - d[0] * a[2];
+  const int64_t cz = d[0] * a[1] - d[1] * a[0];
+  const UInt128 cross2 = static_cast<UInt128>(static_cast<Int128>(cx) * cx) +
+                         static_cast<UInt128>(static_cast<Int128>(cy) * cy) +
+                         static_cast<UInt128>(static_cast<Int128>(cz) * cz);
+  const int64_t sin_q60 = static_cast<int64_t>(ISqrt128(cross2));
+  const Bam gamma = Atan2Bam(sin_q60, cos_q60);  // 0 .. 2^31, sin >= 0
+  const int64_t intensity_q16 = LidIntensityQ16(lid_q16, lid_m, gamma);
+  // Q48.16 cd x g x mantissa x 2^(exponent - 30) = Q.16 lux; x 2^4 -> Q.20.
+  const Int128 p = static_cast<Int128>(intensity_q16) * geometry * geometry_scale.mantissa;
+  return RoundShiftSat64(p, static_cast<int64_t>(geometry_scale.exponent) - 26);
+}
+
+void DirectLightQ12(const DirectReceivers& receivers, const int32_t axis_q30[3],
+                    const int64_t* lid_q16, int lid_m, const uint32_t* reflectance_over_pi_q32,
+                    DirectStore store, int32_t* out) {
+  for (uint32_t r = 0; r < receivers.count; ++r) {
+    const int64_t e_q20 =
+        DirectIlluminanceQ20(receivers.direction_q14 + static_cast<size_t>(r) * 3,
+                             receivers.geometry[r], receivers.geometry_scale, axis_q30, lid_q16,
+                             lid_m);
+    int32_t* dst = out + static_cast<size_t>(r) * 3;
+    for (int c = 0; c < 3; ++c) {
+      int64_t v = 0;
+      if (reflectance_over_pi_q32 != nullptr) {
+        // Q.20 lux x Q0.32 = Q.52, to Q12 cd/m^2.
+        const Int128 p =
+            static_cast<Int128>(e_q20) * reflectance_over_pi_q32[static_cast<size_t>(r) * 3 + c];
+        v = RoundShiftSat64(p, -40);
+      } else {
+        v = RoundShiftSat64(e_q20, -8);
+      }
+      int64_t value = SaturateToInt32(v);
+      if (store == DirectStore::kAdd) value += dst[c];  // two int32: no int64 overflow
+      dst[c] = SaturateToInt32(value);
+    }
+  }
+}
+
+}  // namespace relight

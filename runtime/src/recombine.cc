@@ -1,0 +1,56 @@
+// RecombineQ12: see recombine.h for scaling and overflow.
+#include "recombine.h"
+
+#include <cstddef>
+
+#include "relight/status.h"
+#include "round_shift.h"
+
+namespace relight {
+namespace {
+
+// One term over one block of receivers: a plain loop over contiguous,
+// restrict-qualified arrays with a fixed channel pattern (stride-3 groups,
+// widening int16 x int32 -> int64 multiply-accumulate). The runtime is built
+// with -mgeneral-regs-only, so no SIMD is emitted there; with vector
+// registers allowed, GCC 12 on x86-64 (-O3 -march=haswell) vectorises the
+// zeroing and the final shift/saturate loops but keeps this one scalar.
+inline void AccumulateTerm(const int16_t* __restrict q, int32_t k0, int32_t k1, int32_t k2,
+                           uint32_t n, int64_t* __restrict acc) {
+  for (uint32_t i = 0; i < n; ++i) {
+    acc[3 * i + 0] += static_cast<int64_t>(q[3 * i + 0]) * k0;
+    acc[3 * i + 1] += static_cast<int64_t>(q[3 * i + 1]) * k1;
+    acc[3 * i + 2] += static_cast<int64_t>(q[3 * i + 2]) * k2;
+  }
+}
+
+}  // namespace
+
+uint32_t RecombineQ12(const int16_t* basis, uint32_t term_count, uint32_t receiver_count,
+                      const int32_t* k, int shift, int64_t* scratch, uint32_t scratch_len,
+                      int32_t* out) {
+  RELIGHT_CHECK(scratch_len >= 3);
+  RELIGHT_CHECK(shift >= 0 && shift <= 62);
+  uint32_t used_terms = 0;
+  for (uint32_t t = 0; t < term_count; ++t) {
+    if ((k[3 * t] | k[3 * t + 1] | k[3 * t + 2]) != 0) ++used_terms;
+  }
+  const uint32_t block = scratch_len / 3;
+  const int64_t half = shift > 0 ? (int64_t{1} << (shift - 1)) : 0;
+  for (uint32_t r0 = 0; r0 < receiver_count; r0 += block) {
+    const uint32_t n = receiver_count - r0 < block ? receiver_count - r0 : block;
+    for (uint32_t i = 0; i < 3 * n; ++i) scratch[i] = 0;
+    for (uint32_t t = 0; t < term_count; ++t) {
+      const int32_t k0 = k[3 * t], k1 = k[3 * t + 1], k2 = k[3 * t + 2];
+      if ((k0 | k1 | k2) == 0) continue;
+      const int16_t* q = basis + (static_cast<size_t>(t) * receiver_count + r0) * 3;
+      AccumulateTerm(q, k0, k1, k2, n, scratch);
+    }
+    int32_t* dst = out + static_cast<size_t>(r0) * 3;
+    // |acc| < 2^55, so acc + half cannot overflow int64.
+    for (uint32_t i = 0; i < 3 * n; ++i) dst[i] = SaturateToInt32((scratch[i] + half) >> shift);
+  }
+  return used_terms;
+}
+
+}  // namespace relight
