@@ -1,0 +1,15 @@
+// A luminaire's `lid` table (docs/scene-format.md) into a Lid:
+//   { type = "isotropic", peak_cd }
+//   { type = "cos", exponent, spread, peak_cd }        (Dobashi Eq. 11)
+//   { type = "table", gamma = [0, ...], candela = [...] }
+#pragma once
+
+#include "relight/baker/scene.h"
+#include "toml_fields.h"
+
+namespace relight::baker {
+
+// Throws SceneError (file:line, what was expected) on any bad field.
+Lid ReadLid(const TomlFields& lid_table);
+
+}  // namespace relight::baker
