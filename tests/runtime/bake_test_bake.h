@@ -1,0 +1,197 @@
+// A small but complete Bake from a fixed seed (every kind of section, both
+// direct modes, a rectangle and a list grid, a zero-scale block, an
+// unreachable receiver), and a field-by-field comparison of two bakes.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "relight/bake.h"
+#include "relight/sh_index.h"
+
+namespace relight::bake_test {
+
+// --- A small but complete bake from a fixed seed.
+inline int16_t Q14(double v) { return static_cast<int16_t>(std::lround(v * 16384.0)); }
+
+inline void PutUnit(std::mt19937* rng, std::vector<int16_t>* out) {
+  std::normal_distribution<double> n(0, 1);
+  double x = n(*rng), y = n(*rng), z = n(*rng);
+  const double len = std::sqrt(x * x + y * y + z * z);
+  out->push_back(Q14(x / len));
+  out->push_back(Q14(y / len));
+  out->push_back(Q14(z / len));
+}
+
+inline QuantScale RandomScale(std::mt19937* rng) {
+  std::uniform_int_distribution<int32_t> m(1 << 29, (1 << 30) - 1), e(-40, 8);
+  return QuantScale{m(*rng), e(*rng)};
+}
+
+template <typename T>
+T RandomInt(std::mt19937* rng, int64_t lo, int64_t hi) {
+  return static_cast<T>(std::uniform_int_distribution<int64_t>(lo, hi)(*rng));
+}
+
+inline BakeLightReceivers MakeReceivers(std::mt19937* rng, const BakeLuminaire& lum,
+                                        uint32_t count) {
+  BakeLightReceivers r;
+  if (lum.direct_mode == DirectMode::kExactDirect) {
+    for (uint32_t i = 0; i < count; ++i) {
+      PutUnit(rng, &r.direction);
+      r.geometry.push_back(RandomInt<uint32_t>(rng, 0, UINT32_MAX));
+    }
+    if (count > 1) {  // a receiver the luminaire cannot reach: no direction
+      r.geometry[1] = 0;
+      r.direction[3] = r.direction[4] = r.direction[5] = 0;
+    }
+    r.geometry_scale = RandomScale(rng);
+  }
+  const size_t terms = static_cast<size_t>(ShTermCount(lum.sh_degree));
+  for (size_t i = 0; i < terms * count * 3; ++i) {
+    r.basis.push_back(RandomInt<int16_t>(rng, -32767, 32767));
+  }
+  for (size_t i = 0; i < terms * 3; ++i) r.basis_scale.push_back(RandomScale(rng));
+  // Term 1, blue: an all-zero block has the zero scale.
+  r.basis_scale[1 * 3 + 2] = QuantScale{};
+  for (uint32_t i = 0; i < count; ++i) r.basis[(1 * count + i) * 3 + 2] = 0;
+  return r;
+}
+
+inline BakeLuminaire MakeLuminaire(std::mt19937* rng, const char* name, DirectMode mode, int degree,
+                                   size_t lid_samples) {
+  BakeLuminaire lum;
+  lum.name = name;
+  for (int32_t& v : lum.position) v = RandomInt<int32_t>(rng, -(5 << 16), 5 << 16);
+  lum.mounting = mode == DirectMode::kExactDirect ? Mounting::kHanging : Mounting::kStanding;
+  lum.direct_mode = mode;
+  lum.sh_degree = static_cast<uint8_t>(degree);
+  lum.use_sigma = mode == DirectMode::kExactDirect ? 1 : 0;
+  lum.default_pan = RandomInt<int32_t>(rng, -(270 << 16), 270 << 16);
+  lum.default_tilt = RandomInt<int32_t>(rng, -(135 << 16), 135 << 16);
+  lum.default_dimmer = RandomInt<int16_t>(rng, 0, 32767);
+  for (int16_t& v : lum.default_rgb) v = RandomInt<int16_t>(rng, 0, 32767);
+  for (size_t k = 0; k < lid_samples; ++k) {
+    lum.lid.candela.push_back(RandomInt<int64_t>(rng, 0, int64_t{20000} << 16));
+  }
+  return lum;
+}
+
+inline Bake MakeBake(uint32_t seed) {
+  std::mt19937 rng(seed);
+  Bake b;
+  b.scene_name = "test room";
+  b.white_luminance = 150 << 12;
+  b.camera.position[0] = 1 << 16;
+  b.camera.position[2] = 3 << 16;
+  b.camera.target[1] = -(2 << 16);
+  b.camera.fov_y = 60 << 16;
+  const uint32_t vertices = 11;
+  for (uint32_t v = 0; v < vertices; ++v) {
+    for (int a = 0; a < 3; ++a) {
+      b.mesh.positions.push_back(RandomInt<int32_t>(&rng, -(5 << 16), 5 << 16));
+    }
+    PutUnit(&rng, &b.mesh.normals);
+    for (int c = 0; c < 3; ++c) b.mesh.albedo.push_back(RandomInt<uint16_t>(&rng, 0, 65535));
+  }
+  b.mesh.surface_names = {"floor", "wall north", "B\xC3\xBChne"};  // UTF-8 is allowed
+  for (int t = 0; t < 8; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      b.mesh.triangles.push_back(RandomInt<uint32_t>(&rng, 0, vertices - 1));
+    }
+    b.mesh.triangle_surface.push_back(RandomInt<uint32_t>(&rng, 0, 2));
+  }
+  BakeGrid desk;
+  desk.name = "desk";
+  desk.columns = 4;
+  desk.rows = 3;
+  BakeGrid path;
+  path.name = "path";  // a list: 0 x 0
+  for (BakeGrid* g : {&desk, &path}) {
+    const int points = g == &desk ? 12 : 5;
+    for (int p = 0; p < points; ++p) {
+      for (int a = 0; a < 3; ++a) {
+        g->points.push_back(RandomInt<int32_t>(&rng, -(5 << 16), 5 << 16));
+      }
+      PutUnit(&rng, &g->normals);
+    }
+  }
+  b.grids = {desk, path};
+  b.luminaires.push_back(MakeLuminaire(&rng, "spot", DirectMode::kExactDirect, 2, 181));
+  b.luminaires.push_back(MakeLuminaire(&rng, "wash", DirectMode::kAllInSh, 3, 37));
+  for (BakeLuminaire& lum : b.luminaires) {
+    for (uint32_t s = 0; s < b.receiver_set_count(); ++s) {
+      lum.receivers.push_back(MakeReceivers(&rng, lum, b.receiver_count(s)));
+    }
+  }
+  return b;
+}
+
+inline bool ScalesEqual(const std::vector<QuantScale>& a, const std::vector<QuantScale>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (a[i].mantissa != b[i].mantissa || a[i].exponent != b[i].exponent) return false;
+  }
+  return true;
+}
+
+inline void ExpectBakesEqual(const Bake& a, const Bake& b) {
+  EXPECT_EQ(a.scene_name, b.scene_name);
+  EXPECT_EQ(a.white_luminance, b.white_luminance);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(a.camera.position[i], b.camera.position[i]);
+    EXPECT_EQ(a.camera.target[i], b.camera.target[i]);
+  }
+  EXPECT_EQ(a.camera.fov_y, b.camera.fov_y);
+  EXPECT_EQ(a.mesh.positions, b.mesh.positions);
+  EXPECT_EQ(a.mesh.normals, b.mesh.normals);
+  EXPECT_EQ(a.mesh.albedo, b.mesh.albedo);
+  EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+  EXPECT_EQ(a.mesh.triangle_surface, b.mesh.triangle_surface);
+  EXPECT_EQ(a.mesh.surface_names, b.mesh.surface_names);
+  ASSERT_EQ(a.grids.size(), b.grids.size());
+  for (size_t g = 0; g < a.grids.size(); ++g) {
+    SCOPED_TRACE("grid " + std::to_string(g));
+    EXPECT_EQ(a.grids[g].name, b.grids[g].name);
+    EXPECT_EQ(a.grids[g].columns, b.grids[g].columns);
+    EXPECT_EQ(a.grids[g].rows, b.grids[g].rows);
+    EXPECT_EQ(a.grids[g].points, b.grids[g].points);
+    EXPECT_EQ(a.grids[g].normals, b.grids[g].normals);
+  }
+  ASSERT_EQ(a.luminaires.size(), b.luminaires.size());
+  for (size_t l = 0; l < a.luminaires.size(); ++l) {
+    SCOPED_TRACE("luminaire " + std::to_string(l));
+    const BakeLuminaire& x = a.luminaires[l];
+    const BakeLuminaire& y = b.luminaires[l];
+    EXPECT_EQ(x.name, y.name);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_EQ(x.position[i], y.position[i]);
+      EXPECT_EQ(x.default_rgb[i], y.default_rgb[i]);
+    }
+    EXPECT_EQ(x.mounting, y.mounting);
+    EXPECT_EQ(x.direct_mode, y.direct_mode);
+    EXPECT_EQ(x.sh_degree, y.sh_degree);
+    EXPECT_EQ(x.use_sigma, y.use_sigma);
+    EXPECT_EQ(x.default_pan, y.default_pan);
+    EXPECT_EQ(x.default_tilt, y.default_tilt);
+    EXPECT_EQ(x.default_dimmer, y.default_dimmer);
+    EXPECT_EQ(x.lid.candela, y.lid.candela);
+    ASSERT_EQ(x.receivers.size(), y.receivers.size());
+    for (size_t s = 0; s < x.receivers.size(); ++s) {
+      SCOPED_TRACE("receiver set " + std::to_string(s));
+      const BakeLightReceivers& p = x.receivers[s];
+      const BakeLightReceivers& q = y.receivers[s];
+      EXPECT_EQ(p.direction, q.direction);
+      EXPECT_EQ(p.geometry, q.geometry);
+      EXPECT_TRUE(ScalesEqual({p.geometry_scale}, {q.geometry_scale}));
+      EXPECT_EQ(p.basis, q.basis);
+      EXPECT_TRUE(ScalesEqual(p.basis_scale, q.basis_scale));
+    }
+  }
+}
+
+}  // namespace relight::bake_test
