@@ -6,14 +6,16 @@
 namespace relight::baker {
 namespace {
 
-Q16_16 Degrees(double d) { return Q16_16::FromRaw(static_cast<int32_t>(std::llround(d * 65536.0))); }
+Q16_16 Degrees(double d) {
+  return Q16_16::FromRaw(static_cast<int32_t>(std::llround(d * 65536.0)));
+}
 Q1_15 Level(double v) {
   return Q1_15::FromRaw(static_cast<int16_t>(std::lround(std::clamp(v, 0.0, 1.0) * 32767.0)));
 }
 
 // Compares engine output (LightQ12, 3 per receiver) with reference RGB values.
-void Accumulate(const int32_t* engine_q12, const std::vector<Rgb>& reference, std::vector<double>* errors,
-                double* peak) {
+void Accumulate(const int32_t* engine_q12, const std::vector<Rgb>& reference,
+                std::vector<double>* errors, double* peak) {
   for (size_t r = 0; r < reference.size(); ++r) {
     for (int c = 0; c < 3; ++c) {
       const double got = engine_q12[3 * r + c] / 4096.0;
@@ -43,14 +45,16 @@ AccuracyFigures Summarise(const std::vector<double>& errors, double peak) {
 
 Status ApplySettings(const std::vector<FixtureSetting>& settings, Engine* engine) {
   if (static_cast<int>(settings.size()) != engine->luminaire_count()) {
-    return Status(StatusCode::kInvalidArgument,
-                  StrFormat("%zu settings for %d luminaires", settings.size(), engine->luminaire_count()));
+    return Status(
+        StatusCode::kInvalidArgument,
+        StrFormat("%zu settings for %d luminaires", settings.size(), engine->luminaire_count()));
   }
   for (int i = 0; i < engine->luminaire_count(); ++i) {
     const FixtureSetting& s = settings[i];
     RELIGHT_RETURN_IF_ERROR(engine->SetPanTilt(i, Degrees(s.pan_deg), Degrees(s.tilt_deg)));
     RELIGHT_RETURN_IF_ERROR(engine->SetDimmer(i, Level(s.dimmer)));
-    RELIGHT_RETURN_IF_ERROR(engine->SetColour(i, Level(s.colour[0]), Level(s.colour[1]), Level(s.colour[2])));
+    RELIGHT_RETURN_IF_ERROR(
+        engine->SetColour(i, Level(s.colour[0]), Level(s.colour[1]), Level(s.colour[2])));
   }
   return Status::Ok();
 }
@@ -69,13 +73,15 @@ AccuracyReport CompareWithReference(Engine* engine, const ReferenceResult& refer
   std::vector<double> errors;
   double peak = 0;
   Accumulate(engine->vertex_luminance(),
-             all_in_sh ? reference.vertex_luminance_patch_average : reference.vertex_luminance, &errors, &peak);
+             all_in_sh ? reference.vertex_luminance_patch_average : reference.vertex_luminance,
+             &errors, &peak);
   report.vertices = Summarise(errors, peak);
 
   errors.clear();
   peak = 0;
   for (size_t g = 0; g < reference.grid_illuminance.size(); ++g) {
-    Accumulate(engine->grid_illuminance(static_cast<int>(g)), reference.grid_illuminance[g], &errors, &peak);
+    Accumulate(engine->grid_illuminance(static_cast<int>(g)), reference.grid_illuminance[g],
+               &errors, &peak);
   }
   report.grids = Summarise(errors, peak);
   return report;

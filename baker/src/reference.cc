@@ -1,0 +1,119 @@
+#include "reference.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "radiosity_vec.h"
+#include "relight/baker/photometry.h"
+
+namespace relight::baker {
+namespace {
+
+using namespace radiosity_vec;
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Illuminance (lux) of every luminaire at each point, one column per luminaire.
+Eigen::MatrixXd PointIlluminance(const std::vector<const std::vector<DirectGeometry>*>& per_lum,
+                                 const std::vector<const Lid*>& lids, const std::vector<Vec3>& axes,
+                                 size_t count) {
+  Eigen::MatrixXd e = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(count),
+                                            static_cast<Eigen::Index>(lids.size()));
+  for (size_t l = 0; l < lids.size(); ++l) {
+    for (size_t k = 0; k < count; ++k) {
+      const DirectGeometry& d = (*per_lum[l])[k];
+      if (d.g_m2 > 0) {
+        e(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(l)) =
+            d.g_m2 * ExactIntensity(*lids[l], axes[l], d.direction);
+      }
+    }
+  }
+  return e;
+}
+
+std::vector<Rgb> ToRgb(const std::array<Eigen::VectorXd, 3>& channels) {
+  std::vector<Rgb> out(static_cast<size_t>(channels[0].size()));
+  for (size_t k = 0; k < out.size(); ++k)
+    for (int c = 0; c < 3; ++c) out[k][c] = channels[c](static_cast<Eigen::Index>(k));
+  return out;
+}
+
+}  // namespace
+
+double ExactIntensity(const Lid& lid, const Vec3& axis, const Vec3& dir) {
+  const double cos_gamma = std::clamp(Dot(axis, dir), -1.0, 1.0);
+  return lid.Evaluate(std::acos(cos_gamma) * (180.0 / kPi));
+}
+
+ReferenceResult ComputeReference(const BakerCore& core,
+                                 const std::vector<FixtureSetting>& settings) {
+  const Scene& scene = core.scene;
+  const Mesh& mesh = core.mesh;
+  if (settings.size() != scene.luminaires.size()) {
+    throw std::invalid_argument("reference: " + std::to_string(settings.size()) + " settings for " +
+                                std::to_string(scene.luminaires.size()) + " luminaires");
+  }
+  const size_t lums = scene.luminaires.size();
+  const auto n = static_cast<Eigen::Index>(mesh.patch_count());
+  std::vector<Vec3> axes;
+  std::vector<const Lid*> lids;
+  Eigen::MatrixXd e(n, static_cast<Eigen::Index>(lums));
+  for (size_t l = 0; l < lums; ++l) {
+    const Luminaire& lum = scene.luminaires[l];
+    axes.push_back(BeamAxis(lum.mounting, settings[l].pan_deg, settings[l].tilt_deg));
+    lids.push_back(&lum.lid);
+    const Vec3 axis = axes.back();
+    e.col(static_cast<Eigen::Index>(l)) = PatchIlluminance(
+        core.direct[l], [&](const Vec3& dir) { return ExactIntensity(lum.lid, axis, dir); });
+  }
+  // Per channel, each luminaire's white-light result times dimmer x colour.
+  std::array<Eigen::VectorXd, 3> level;
+  for (int c = 0; c < 3; ++c) {
+    level[c].resize(static_cast<Eigen::Index>(lums));
+    for (size_t l = 0; l < lums; ++l)
+      level[c](static_cast<Eigen::Index>(l)) = settings[l].dimmer * settings[l].colour[c];
+  }
+
+  std::vector<const std::vector<DirectGeometry>*> vertex_direct;
+  for (size_t l = 0; l < lums; ++l) vertex_direct.push_back(&core.direct[l].vertices);
+  const Eigen::MatrixXd e_vertex = PointIlluminance(vertex_direct, lids, axes, mesh.vertex_count());
+
+  ReferenceResult out;
+  std::array<Eigen::VectorXd, 3> split, patch_average;
+  std::vector<std::array<Eigen::VectorXd, 3>> grid_total(scene.grids.size());
+  std::vector<std::array<Eigen::VectorXd, 3>> grid_direct(scene.grids.size());
+  std::vector<Eigen::MatrixXd> e_grid;
+  for (size_t g = 0; g < scene.grids.size(); ++g) {
+    std::vector<const std::vector<DirectGeometry>*> per_lum;
+    for (size_t l = 0; l < lums; ++l) per_lum.push_back(&core.direct[l].grids[g]);
+    e_grid.push_back(PointIlluminance(per_lum, lids, axes, scene.grids[g].points.size()));
+  }
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::VectorXd& rho = core.solver->reflectance(c);
+    const Eigen::MatrixXd m = core.solver->SolveExitance(c, e);  // lm/m^2 per luminaire
+    const Eigen::VectorXd m_sum = m * level[c];
+    const Eigen::VectorXd indirect_patch = (m_sum - rho.asDiagonal() * (e * level[c])) / kPi;
+    Eigen::VectorXd vertex_rho(static_cast<Eigen::Index>(mesh.vertex_count()));
+    for (size_t v = 0; v < mesh.vertex_count(); ++v)
+      vertex_rho(static_cast<Eigen::Index>(v)) = mesh.vertex_reflectance[v][c];
+    // Exact direct at the vertex, reflected diffusely: L = rho E / pi.
+    split[c] = vertex_rho.cwiseProduct(e_vertex * level[c]) / kPi +
+               AverageToVertices(mesh, indirect_patch);
+    patch_average[c] = AverageToVertices(mesh, m_sum / kPi);
+    for (size_t g = 0; g < scene.grids.size(); ++g) {
+      grid_direct[g][c] = e_grid[g] * level[c];
+      grid_total[g][c] = grid_direct[g][c] + core.gather[g] * m_sum;
+    }
+  }
+  out.vertex_luminance = ToRgb(split);
+  out.vertex_luminance_patch_average = ToRgb(patch_average);
+  for (size_t g = 0; g < scene.grids.size(); ++g) {
+    out.grid_illuminance.push_back(ToRgb(grid_total[g]));
+    out.grid_direct_illuminance.push_back(ToRgb(grid_direct[g]));
+  }
+  return out;
+}
+
+}  // namespace relight::baker

@@ -1,0 +1,55 @@
+// What the bake and the reference share, built once per Baker: the mesh,
+// the Embree scene, the form factors (patches and grid points), the
+// factorised radiosity system and each luminaire's direct geometry.
+#pragma once
+
+#include <Eigen/Dense>
+#include <memory>
+#include <vector>
+
+#include "direct_light.h"
+#include "form_factors.h"
+#include "mesher.h"
+#include "progress.h"
+#include "radiosity_solve.h"
+#include "relight/baker/baker.h"
+#include "visibility.h"
+
+namespace relight::baker {
+
+struct BakerCore {
+  Scene scene;
+  BakeOptions options;
+  Mesh mesh;
+  std::unique_ptr<Visibility> visibility;
+  PatchSampleSets samples;
+  Eigen::MatrixXd form_factors;         // patches x patches
+  std::vector<Eigen::MatrixXd> gather;  // per grid: points x patches
+  std::unique_ptr<RadiositySolver> solver;
+  std::vector<LuminaireDirect> direct;  // per luminaire
+  BakeReport report;
+};
+
+// Validates what the radiosity stages rely on and builds everything; throws
+// SceneError for bad input. `progress` may be null.
+std::unique_ptr<BakerCore> BuildBakerCore(const Scene& scene, const BakeOptions& options,
+                                          Progress* progress);
+
+// Direct illuminance E_i (lux) per patch for an intensity I(direction) in cd.
+template <typename Intensity>
+Eigen::VectorXd PatchIlluminance(const LuminaireDirect& direct, Intensity intensity_cd) {
+  const Eigen::Index n = static_cast<Eigen::Index>(direct.patch_offsets.size()) - 1;
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (uint32_t s = direct.patch_offsets[i]; s < direct.patch_offsets[i + 1]; ++s) {
+      e(i) += direct.patch_samples[s].g_m2 * intensity_cd(direct.patch_samples[s].direction);
+    }
+  }
+  return e;
+}
+
+// Area-weighted average over the patches around each vertex: rows of
+// `per_patch` (patches x k) to rows of the result (vertices x k).
+Eigen::MatrixXd AverageToVertices(const Mesh& mesh, const Eigen::MatrixXd& per_patch);
+
+}  // namespace relight::baker
