@@ -91,7 +91,7 @@ BakeLuminaire MakeBakeLuminaire(const Luminaire& lum, const LuminaireBasis& basi
   out.direct_mode =
       basis.mode == DirectModeKind::kExact ? DirectMode::kExactDirect : DirectMode::kAllInSh;
   out.sh_degree = static_cast<uint8_t>(basis.degree);
-  out.use_sigma = lum.use_sigma ? 1 : 0;
+  out.use_sigma = lum.use_sigma.value_or(basis.mode == DirectModeKind::kAllInSh) ? 1 : 0;
   out.default_pan = ToQ16_16(lum.pan_deg).raw();
   out.default_tilt = ToQ16_16(lum.tilt_deg).raw();
   out.default_dimmer = ToLevelQ1_15(lum.dimmer).raw();

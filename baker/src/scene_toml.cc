@@ -374,7 +374,7 @@ class SceneReader {
         lum.colour[k] = f.ReadNumber(*array->get(k), "colour", Closed(0, 1));
     }
     lum.sh_degree = static_cast<int>(f.Integer("sh_degree", 0, 16, 8));
-    lum.use_sigma = f.Bool("sigma", true);
+    if (f.Has("sigma")) lum.use_sigma = f.Bool("sigma", true);
     lum.lid = ReadLid(TomlFields(f.Table("lid"), path_, f.what() + " lid"));
     return lum;
   }

@@ -99,12 +99,21 @@ void BuildToneMap(int32_t white_q12, ToneMap* out) {
     const int64_t l = static_cast<int64_t>(i) << shift;
     out->table[i] = EncodeSrgb8(ShoulderQ24(l, white));
   }
+  out->fine_shift = shift >= 4 ? shift - 4 : 0;
+  for (int i = 0; i < kToneMapEntries; ++i) {
+    out->fine[i] = EncodeSrgb8(ShoulderQ24(static_cast<int64_t>(i) << out->fine_shift, white));
+  }
 }
 
 void ToneMapRgb8(const ToneMap& map, const int32_t* rgb_q12, uint32_t count, uint8_t* out) {
   const size_t n = static_cast<size_t>(count) * 3;
   for (size_t i = 0; i < n; ++i) {
     const int32_t l = rgb_q12[i] > 0 ? rgb_q12[i] : 0;
+    const uint32_t fine_index = static_cast<uint32_t>(l) >> map.fine_shift;
+    if (fine_index < kToneMapEntries) {
+      out[i] = map.fine[fine_index];
+      continue;
+    }
     uint32_t index = static_cast<uint32_t>(l) >> map.shift;
     if (index > kToneMapEntries - 1) index = kToneMapEntries - 1;
     out[i] = map.table[index];

@@ -42,7 +42,7 @@ int RenderReplay(Engine& engine, const std::string& script_path, double fps, con
         std::string error;
         if (!ApplyChange(engine, changes[k], &error)) {
           std::fprintf(stderr, "relight-render: error: %s at %.3f s: %s\n", script_path.c_str(),
-                       changes[k].time_us / 1e6, error.c_str());
+                       static_cast<double>(changes[k].time_us) / 1e6, error.c_str());
           return 2;
         }
       }
@@ -50,7 +50,7 @@ int RenderReplay(Engine& engine, const std::string& script_path, double fps, con
     char path[4096];
     std::snprintf(path, sizeof path, pattern.c_str(), i);
     if (int rc = render_to(path); rc != 0) return rc;
-    std::printf("\rrelight-render: frame %d/%d (t = %.2f s) -> %s", i + 1, frames, now_us / 1e6, path);
+    std::printf("\rrelight-render: frame %d/%d (t = %.2f s) -> %s", i + 1, frames, static_cast<double>(now_us) / 1e6, path);
     std::fflush(stdout);
   }
   std::printf("\nrelight-render: wrote %d frames from %s\n", frames, script_path.c_str());

@@ -473,7 +473,8 @@ TEST_F(SceneFiles, LuminaireDefaultsAndTableLid) {
   EXPECT_EQ(l.dimmer, 1.0);
   EXPECT_EQ(l.colour, (Rgb{1, 1, 1}));
   EXPECT_EQ(l.sh_degree, 8);
-  EXPECT_FALSE(l.use_sigma);
+  ASSERT_TRUE(l.use_sigma.has_value());
+  EXPECT_FALSE(*l.use_sigma);
   EXPECT_EQ(l.lid.gamma_deg, (std::vector<double>{0, 10, 90.5}));
   EXPECT_EQ(l.lid.candela, (std::vector<double>{5, 7, 0}));
   EXPECT_EQ(l.lid.peak_cd, 7.0);

@@ -3,6 +3,7 @@
 // spot (spread 90 degrees, SH degree 8). Bars: split mode max <= 2% of the
 // scene's peak and mean <= 0.3%; the all-in-SH paper mode is reported.
 #include <cstdio>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -64,7 +65,11 @@ TEST_P(CornellAccuracy, AllInShModeIsReported) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Aims, CornellAccuracy,
-                         ::testing::Values(AimCase{0, 0}, AimCase{0, 30}, AimCase{45, 60}));
+                         ::testing::Values(AimCase{0, 0}, AimCase{0, 30}, AimCase{45, 60}),
+                         [](const ::testing::TestParamInfo<AimCase>& param_info) {
+                           return "pan" + std::to_string(static_cast<int>(param_info.param.pan)) + "_tilt" +
+                                  std::to_string(static_cast<int>(param_info.param.tilt));
+                         });
 
 }  // namespace
 }  // namespace relight::test

@@ -94,5 +94,20 @@ TEST(ToneMap, KnownSrgbPoints) {
   EXPECT_LT(Shoulder(x_prev), first);
 }
 
+TEST(ToneMap, DarkEndDoesNotBand) {
+  // Below 1/4 of white every luminance maps within one code of the float
+  // curve, and one LSB steps of the fine table never jump more than 1 code.
+  auto map = std::make_unique<ToneMap>();
+  const int32_t white = 200 << 12;  // 200 cd/m^2
+  BuildToneMap(white, map.get());
+  int worst = 0;
+  for (int32_t l = 0; l < white / 4; l += 7) {
+    const int diff = std::abs(MapOne(*map, l) - static_cast<int>(std::lround(FloatCode(l, white))));
+    worst = std::max(worst, diff);
+  }
+  EXPECT_LE(worst, 1);
+  for (int i = 1; i < kToneMapEntries; ++i) EXPECT_LE(map->fine[i] - map->fine[i - 1], 1) << i;
+}
+
 }  // namespace
 }  // namespace relight

@@ -98,7 +98,9 @@ struct Bake {
   std::vector<BakeGrid> grids;
   std::vector<BakeLuminaire> luminaires;
   BakeCamera camera;
-  int32_t white_luminance = 100 << kLightFracBits;  // LightQ12 cd/m^2 mapped to display white
+  // LightQ12 cd/m^2 shown as diffuse white (sRGB 193, about 53% linear); the
+  // tone map rolls highlights off up to 4x this, where it reaches 255.
+  int32_t white_luminance = 100 << kLightFracBits;
 
   uint32_t receiver_set_count() const { return 1 + static_cast<uint32_t>(grids.size()); }
   uint32_t receiver_count(uint32_t set) const {

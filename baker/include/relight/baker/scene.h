@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -63,7 +64,12 @@ struct Luminaire {
   double dimmer = 1.0;               // default, 0..1
   Rgb colour{1, 1, 1};               // default, each 0..1
   int sh_degree = 8;                 // N, 0..16
-  bool use_sigma = true;             // sigma factor on the Legendre series (Dobashi Eq. 13)
+  // Sigma factor on the Legendre series (Dobashi Eq. 13). Unset: on for the
+  // all-in-SH mode, where ringing would show as bright rings in the direct
+  // light; off with the exact direct term, where the SH only carries the
+  // indirect light and the undamped (least-squares) series is far more
+  // accurate (docs/accuracy.md).
+  std::optional<bool> use_sigma;
   Lid lid;
   int line = 0;                      // where it was declared, for messages
 };
