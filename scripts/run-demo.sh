@@ -10,6 +10,6 @@ mkdir -p out/frames
 "$BUILD_DIR"/baker/relight-bake fixtures/living_room.toml -o out/living_room.rlb
 "$BUILD_DIR"/runtime/relight-render out/living_room.rlb --list
 "$BUILD_DIR"/runtime/relight-render out/living_room.rlb --replay fixtures/living_room.replay --fps 2 \
-    -o out/frames/living_room_%04d.png
+    -o out/frames/living_room_%04d.png --sheet out/living_room_sheet.png
 "$BUILD_DIR"/runtime/relight-probe out/living_room.rlb -o out/living_room_floor.csv
-echo "relight: frames in out/frames/, floor illuminance in out/living_room_floor.csv"
+echo "relight: frames in out/frames/ (all of them on one page: out/living_room_sheet.png), floor illuminance in out/living_room_floor.csv"

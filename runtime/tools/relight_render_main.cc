@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
       "Settings: --set FIXTURE.PARAM=VALUE with PARAM one of pan, tilt (degrees), dimmer (0..1 or\n"
       "0..100%), r, g, b (0..1) or colour=R,G,B. Unset parameters keep the scene's defaults.\n"
       "Luminance (cd/m^2) is tone-mapped to sRGB with the bake's display white unless --white is given."};
-  std::string bake_path, out_path = "frame.png", replay_path, camera_pos, camera_target;
+  std::string bake_path, out_path = "frame.png", replay_path, camera_pos, camera_target, sheet_path;
   std::vector<std::string> sets;
   int width = 1280, height = 720;
   double fps = 5, white_cd_m2 = 0, fov = 0;
@@ -81,6 +81,7 @@ int main(int argc, char** argv) {
   app.add_option("--replay", replay_path,
                  "replay script of timed settings ('TIME_S FIXTURE.PARAM=VALUE ...' per line): one frame per 1/fps seconds");
   app.add_option("--fps", fps, "frames per second of script time for --replay")->capture_default_str()->check(CLI::Range(0.1, 240.0));
+  app.add_option("--sheet", sheet_path, "with --replay: also write all frames, half size, tiled 4 per row into this PNG");
   app.add_flag("--list", list, "print the bake's luminaires and their default settings, then exit");
   CLI11_PARSE(app, argc, argv);
 
@@ -128,5 +129,6 @@ int main(int argc, char** argv) {
     std::printf("relight-render: wrote %s (%dx%d)\n", out_path.c_str(), width, height);
     return 0;
   }
-  return relight::cli::RenderReplay(engine, replay_path, fps, out_path, render_to);
+  return relight::cli::RenderReplay(engine, replay_path, fps, out_path, render_to,
+                                    {sheet_path, pixels.data(), width, height});
 }

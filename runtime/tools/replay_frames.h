@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <cstdint>
 #include <string>
 
 #include "relight/engine.h"
@@ -14,7 +15,14 @@ namespace relight::cli {
 // has been shown; `render_to(path)` updates, draws and writes one frame and
 // returns 0 or an exit code. `pattern` holds one printf %d for the frame
 // number (e.g. "frames/frame_%04d.png"). Returns a process exit code.
+// With a non-empty `sheet_path`, also writes every frame tiled into one PNG
+// (4 per row, half size), `frame_rgb` being the buffer render_to fills.
+struct ContactSheet {
+  std::string path;
+  const uint8_t* frame_rgb = nullptr;
+  int width = 0, height = 0;
+};
 int RenderReplay(Engine& engine, const std::string& script_path, double fps, const std::string& pattern,
-                 const std::function<int(const std::string&)>& render_to);
+                 const std::function<int(const std::string&)>& render_to, const ContactSheet& sheet);
 
 }  // namespace relight::cli
