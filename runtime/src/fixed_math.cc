@@ -125,9 +125,13 @@ void SinCosTurnQ61(uint64_t num, uint64_t den, int64_t* sin_q61, int64_t* cos_q6
 
 }  // namespace internal
 
-uint32_t ISqrt64(uint64_t v) {
-  // Digit-by-digit (binary restoring) square root: exact floor.
-  uint64_t rem = v, root = 0, bit = uint64_t{1} << 62;
+namespace {
+
+// Digit-by-digit (binary restoring) square root: exact floor, for any
+// unsigned width; `top` is the highest even power of two the type holds.
+template <typename U>
+U ISqrtFloor(U v, U top) {
+  U rem = v, root = 0, bit = top;
   while (bit > v) bit >>= 2;
   while (bit != 0) {
     if (rem >= root + bit) {
@@ -138,22 +142,17 @@ uint32_t ISqrt64(uint64_t v) {
     }
     bit >>= 2;
   }
-  return static_cast<uint32_t>(root);
+  return root;
+}
+
+}  // namespace
+
+uint32_t ISqrt64(uint64_t v) {
+  return static_cast<uint32_t>(ISqrtFloor<uint64_t>(v, uint64_t{1} << 62));
 }
 
 uint64_t ISqrt128(u128 v) {
-  u128 rem = v, root = 0, bit = static_cast<u128>(1) << 126;
-  while (bit > v) bit >>= 2;
-  while (bit != 0) {
-    if (rem >= root + bit) {
-      rem -= root + bit;
-      root = (root >> 1) + bit;
-    } else {
-      root >>= 1;
-    }
-    bit >>= 2;
-  }
-  return static_cast<uint64_t>(root);
+  return static_cast<uint64_t>(ISqrtFloor<u128>(v, static_cast<u128>(1) << 126));
 }
 
 Bam DegreesToBam(Q16_16 degrees) {
