@@ -3,6 +3,8 @@
 
 #include <cstddef>
 
+#include "recombine_avx2.h"
+#include "relight/sh_index.h"
 #include "relight/status.h"
 #include "round_shift.h"
 
@@ -24,6 +26,32 @@ inline void AccumulateTerm(const int16_t* __restrict q, int32_t k0, int32_t k1, 
   }
 }
 
+// Shifts, rounds (halves up) and saturates one block's accumulators.
+inline void FinishBlock(const int64_t* acc, uint32_t elements, int shift, int32_t* dst) {
+  const int64_t half = shift > 0 ? (int64_t{1} << (shift - 1)) : 0;
+  // |acc| < 2^55, so acc + half cannot overflow int64.
+  for (uint32_t i = 0; i < elements; ++i) dst[i] = SaturateToInt32((acc[i] + half) >> shift);
+}
+
+// The vector path: AVX2 multiply-adds over the active terms, blocks of
+// scratch_len / 6 receivers (two accumulators per element).
+void RecombineVector(const int16_t* basis, uint32_t receiver_count, const uint16_t* terms,
+                     uint32_t term_count, const int32_t* k, int shift, int64_t* scratch,
+                     uint32_t scratch_len, int32_t* out) {
+  const uint32_t block = scratch_len / 6;
+  for (uint32_t r0 = 0; r0 < receiver_count; r0 += block) {
+    const uint32_t n = receiver_count - r0 < block ? receiver_count - r0 : block;
+    int64_t* acc_hi = scratch;
+    int64_t* acc_lo = scratch + 3 * n;
+    for (uint32_t i = 0; i < 6 * n; ++i) scratch[i] = 0;
+    AccumulateTermsAvx2(basis + static_cast<size_t>(r0) * 3, static_cast<uint64_t>(receiver_count) * 3, terms,
+                        term_count, k, 3 * n, acc_hi, acc_lo);
+    // acc = acc_hi * 2^12 + acc_lo exactly (|acc_hi| < 289 * 2^27, so no overflow).
+    for (uint32_t i = 0; i < 3 * n; ++i) acc_lo[i] += acc_hi[i] * 4096;
+    FinishBlock(acc_lo, 3 * n, shift, out + static_cast<size_t>(r0) * 3);
+  }
+}
+
 }  // namespace
 
 uint32_t RecombineQ12(const int16_t* basis, uint32_t term_count, uint32_t receiver_count,
@@ -31,12 +59,21 @@ uint32_t RecombineQ12(const int16_t* basis, uint32_t term_count, uint32_t receiv
                       int32_t* out) {
   RELIGHT_CHECK(scratch_len >= 3);
   RELIGHT_CHECK(shift >= 0 && shift <= 62);
+  RELIGHT_CHECK(term_count <= static_cast<uint32_t>(ShTermCount(kMaxShDegree)));
+  uint16_t active[ShTermCount(kMaxShDegree)];
   uint32_t used_terms = 0;
+  bool vector_ok = scratch_len >= 6;
+  constexpr int32_t kVectorLimit = int32_t{1} << kVectorMultiplierBits;
   for (uint32_t t = 0; t < term_count; ++t) {
-    if ((k[3 * t] | k[3 * t + 1] | k[3 * t + 2]) != 0) ++used_terms;
+    if ((k[3 * t] | k[3 * t + 1] | k[3 * t + 2]) == 0) continue;
+    active[used_terms++] = static_cast<uint16_t>(t);
+    for (int c = 0; c < 3; ++c) vector_ok = vector_ok && k[3 * t + c] < kVectorLimit && k[3 * t + c] >= -kVectorLimit;
+  }
+  if (vector_ok && used_terms > 0 && CpuHasAvx2()) {
+    RecombineVector(basis, receiver_count, active, used_terms, k, shift, scratch, scratch_len, out);
+    return used_terms;
   }
   const uint32_t block = scratch_len / 3;
-  const int64_t half = shift > 0 ? (int64_t{1} << (shift - 1)) : 0;
   for (uint32_t r0 = 0; r0 < receiver_count; r0 += block) {
     const uint32_t n = receiver_count - r0 < block ? receiver_count - r0 : block;
     for (uint32_t i = 0; i < 3 * n; ++i) scratch[i] = 0;
@@ -46,9 +83,7 @@ uint32_t RecombineQ12(const int16_t* basis, uint32_t term_count, uint32_t receiv
       const int16_t* q = basis + (static_cast<size_t>(t) * receiver_count + r0) * 3;
       AccumulateTerm(q, k0, k1, k2, n, scratch);
     }
-    int32_t* dst = out + static_cast<size_t>(r0) * 3;
-    // |acc| < 2^55, so acc + half cannot overflow int64.
-    for (uint32_t i = 0; i < 3 * n; ++i) dst[i] = SaturateToInt32((scratch[i] + half) >> shift);
+    FinishBlock(scratch, 3 * n, shift, out + static_cast<size_t>(r0) * 3);
   }
   return used_terms;
 }

@@ -39,8 +39,10 @@ void TermCoefficientsQ16(const ShTables& tables, int degree, const int64_t* damp
 // so that sum_t q_tc * k_tc >> F is the output in LightQ12 (the 34 is the
 // 30 of QuantScale plus the 16 of Q48.16 minus the 12 of LightQ12).
 // F in [0, kMaxRecombineShift] is the largest shift that keeps every
-// |k_tc| < 2^31; if even F = 0 does not (an output that saturates anyway
-// for any q != 0), k saturates to +-(2^31 - 1). k_out: term_count * 3.
+// |k_tc| < 2^24 (what the kernel's vector path takes, recombine_avx2.h); if
+// even F = 0 does not (an output that saturates for sizeable q), k keeps its
+// value up to +-(2^31 - 1) and the kernel takes its exact scalar path.
+// k_out: term_count * 3.
 int ChannelMultipliersQ12(const int64_t* coef_q16, int term_count, const QuantScale* basis_scale,
                           int32_t* k_out);
 

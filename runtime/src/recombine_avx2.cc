@@ -1,0 +1,133 @@
+// AVX2 accumulation for RecombineQ12: see recombine_avx2.h. Integer
+// instructions only (no float): madd of int16 pairs, int32 adds, sign
+// extension to int64.
+#include "recombine_avx2.h"
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#define RELIGHT_HAVE_AVX2_PATH 1
+#endif
+
+namespace relight {
+
+#ifdef RELIGHT_HAVE_AVX2_PATH
+
+bool CpuHasAvx2() {
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
+}
+
+namespace {
+
+// Two terms' 12-bit halves packed per int32 lane as (term a in the low 16
+// bits, term b in the high 16 bits), the order _mm256_unpack*_epi16 puts
+// their basis values in, for the channel of each lane.
+inline int32_t Pack(int32_t a, int32_t b) {
+  return static_cast<int32_t>((static_cast<uint32_t>(b) << 16) | (static_cast<uint32_t>(a) & 0xFFFFu));
+}
+
+// For a 16-element chunk starting at element e0 with e0 % 3 == phase:
+// unpacklo lanes hold elements e0 + {0,1,2,3 | 8,9,10,11}, unpackhi
+// e0 + {4,5,6,7 | 12,13,14,15} (AVX2 unpacks work within 128-bit halves).
+constexpr int kLoOffsets[8] = {0, 1, 2, 3, 8, 9, 10, 11};
+constexpr int kHiOffsets[8] = {4, 5, 6, 7, 12, 13, 14, 15};
+
+struct PairVectors {
+  __m256i lo_kh[3], lo_kl[3], hi_kh[3], hi_kl[3];  // [phase]
+};
+
+__attribute__((target("avx2"))) PairVectors MakePair(const int32_t* ka, const int32_t* kb) {
+  PairVectors v;
+  for (int phase = 0; phase < 3; ++phase) {
+    alignas(32) int32_t lkh[8], lkl[8], hkh[8], hkl[8];
+    for (int i = 0; i < 8; ++i) {
+      const int cl = (phase + kLoOffsets[i]) % 3, ch = (phase + kHiOffsets[i]) % 3;
+      // Arithmetic shift: kh = floor(k / 2^12); kl = k - kh * 2^12 in [0, 2^12).
+      lkh[i] = Pack(ka[cl] >> 12, kb[cl] >> 12);
+      lkl[i] = Pack(ka[cl] & 0xFFF, kb[cl] & 0xFFF);
+      hkh[i] = Pack(ka[ch] >> 12, kb[ch] >> 12);
+      hkl[i] = Pack(ka[ch] & 0xFFF, kb[ch] & 0xFFF);
+    }
+    v.lo_kh[phase] = _mm256_load_si256(reinterpret_cast<const __m256i*>(lkh));
+    v.lo_kl[phase] = _mm256_load_si256(reinterpret_cast<const __m256i*>(lkl));
+    v.hi_kh[phase] = _mm256_load_si256(reinterpret_cast<const __m256i*>(hkh));
+    v.hi_kl[phase] = _mm256_load_si256(reinterpret_cast<const __m256i*>(hkl));
+  }
+  return v;
+}
+
+// acc[e0 + offsets[0..3]] and acc[e0 + offsets[4..7]] += the 8 int32 lanes of s.
+__attribute__((target("avx2"))) inline void Widen(__m256i s, int64_t* acc, int first, int second) {
+  const __m256i a = _mm256_cvtepi32_epi64(_mm256_castsi256_si128(s));
+  const __m256i b = _mm256_cvtepi32_epi64(_mm256_extracti128_si256(s, 1));
+  __m256i* pa = reinterpret_cast<__m256i*>(acc + first);
+  __m256i* pb = reinterpret_cast<__m256i*>(acc + second);
+  _mm256_storeu_si256(pa, _mm256_add_epi64(_mm256_loadu_si256(pa), a));
+  _mm256_storeu_si256(pb, _mm256_add_epi64(_mm256_loadu_si256(pb), b));
+}
+
+constexpr int kPairsPerWiden = 4;  // 8 terms summed in int32 before widening (< 2^30)
+
+}  // namespace
+
+__attribute__((target("avx2"))) void AccumulateTermsAvx2(const int16_t* basis, uint64_t stride,
+                                                         const uint16_t* terms, uint32_t term_count,
+                                                         const int32_t* k, uint32_t elements,
+                                                         int64_t* acc_hi, int64_t* acc_lo) {
+  static const int32_t kZero[3] = {0, 0, 0};
+  const uint32_t chunks = elements / 16;
+  const uint32_t pair_count = (term_count + 1) / 2;
+  for (uint32_t p0 = 0; p0 < pair_count; p0 += kPairsPerWiden) {
+    const uint32_t group = pair_count - p0 < kPairsPerWiden ? pair_count - p0 : kPairsPerWiden;
+    PairVectors vec[kPairsPerWiden];
+    const int16_t* row_a[kPairsPerWiden];
+    const int16_t* row_b[kPairsPerWiden];
+    for (uint32_t g = 0; g < group; ++g) {
+      const uint32_t ia = 2 * (p0 + g), ib = ia + 1;
+      const uint16_t ta = terms[ia];
+      // An odd term count pairs the last term with itself times zero.
+      const bool has_b = ib < term_count;
+      const uint16_t tb = has_b ? terms[ib] : ta;
+      vec[g] = MakePair(k + 3 * ta, has_b ? k + 3 * tb : kZero);
+      row_a[g] = basis + ta * stride;
+      row_b[g] = basis + tb * stride;
+    }
+    for (uint32_t j = 0; j < chunks; ++j) {
+      const uint32_t e0 = 16 * j;
+      const int phase = static_cast<int>(j % 3);  // 16 = 1 (mod 3)
+      __m256i lo_h = _mm256_setzero_si256(), lo_l = lo_h, hi_h = lo_h, hi_l = lo_h;
+      for (uint32_t g = 0; g < group; ++g) {
+        const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(row_a[g] + e0));
+        const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(row_b[g] + e0));
+        const __m256i lo = _mm256_unpacklo_epi16(a, b);
+        const __m256i hi = _mm256_unpackhi_epi16(a, b);
+        lo_h = _mm256_add_epi32(lo_h, _mm256_madd_epi16(lo, vec[g].lo_kh[phase]));
+        lo_l = _mm256_add_epi32(lo_l, _mm256_madd_epi16(lo, vec[g].lo_kl[phase]));
+        hi_h = _mm256_add_epi32(hi_h, _mm256_madd_epi16(hi, vec[g].hi_kh[phase]));
+        hi_l = _mm256_add_epi32(hi_l, _mm256_madd_epi16(hi, vec[g].hi_kl[phase]));
+      }
+      Widen(lo_h, acc_hi + e0, 0, 8);
+      Widen(lo_l, acc_lo + e0, 0, 8);
+      Widen(hi_h, acc_hi + e0, 4, 12);
+      Widen(hi_l, acc_lo + e0, 4, 12);
+    }
+  }
+  // Tail elements (fewer than 16): exact scalar products into acc_lo.
+  for (uint32_t e = chunks * 16; e < elements; ++e) {
+    int64_t sum = 0;
+    for (uint32_t i = 0; i < term_count; ++i) {
+      sum += static_cast<int64_t>(basis[terms[i] * stride + e]) * k[3 * terms[i] + e % 3];
+    }
+    acc_lo[e] += sum;
+  }
+}
+
+#else  // no AVX2 path on this target: RecombineQ12 stays scalar
+
+bool CpuHasAvx2() { return false; }
+void AccumulateTermsAvx2(const int16_t*, uint64_t, const uint16_t*, uint32_t, const int32_t*, uint32_t,
+                         int64_t*, int64_t*) {}
+
+#endif
+
+}  // namespace relight

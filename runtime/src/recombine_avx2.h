@@ -1,0 +1,31 @@
+// The AVX2 body of RecombineQ12 (recombine.h), in its own file because the
+// rest of the runtime is built with -mgeneral-regs-only. It uses integer
+// instructions only; tests/runtime/no_float_test checks its object code for
+// floating-point instructions. Results are bit-identical to the scalar path.
+#pragma once
+
+#include <cstdint>
+
+namespace relight {
+
+// Multipliers the vector path accepts: |k| < 2^kVectorMultiplierBits (each k
+// is split into a signed high and an unsigned low 12-bit half for 16-bit
+// multiply-adds). RecombineQ12 falls back to the scalar path otherwise.
+inline constexpr int kVectorMultiplierBits = 24;
+
+// True when the CPU runs AVX2 (checked once).
+bool CpuHasAvx2();
+
+// acc[e] += sum over the given terms of q_t[e] * k[t*3 + e % 3], exactly, for
+// e in [0, elements), where q_t = basis + t * stride (int16 elements). The
+// term list holds indices into the rows/multipliers; |k| < 2^24 for those.
+//
+// Scaling and overflow: each k = kh * 2^12 + kl, kh in [-2^12, 2^12),
+// kl in [0, 2^12). _mm256_madd_epi16 forms q_a*kh_a + q_b*kh_b for a term
+// pair in int32 (< 2 * 2^15 * 2^12 = 2^28); four pairs (8 terms) are summed
+// in int32 (< 2^30) before widening to the int64 accumulators acc_hi/acc_lo,
+// which the caller combines as acc_hi * 2^12 + acc_lo (< 289 * 2^27 * 2^12).
+void AccumulateTermsAvx2(const int16_t* basis, uint64_t stride, const uint16_t* terms, uint32_t term_count,
+                         const int32_t* k, uint32_t elements, int64_t* acc_hi, int64_t* acc_lo);
+
+}  // namespace relight
