@@ -14,7 +14,7 @@
 
 #include "relight/engine.h"
 #include "relight/osmesa_frame.h"
-#include "relight/tone_map.h"
+#include "frame_pipeline.h"
 #include "replay_frames.h"
 #include "set_args.h"
 
@@ -27,16 +27,6 @@ int Fail(const std::string& message, int code) {
 
 bool ParseVec3(const std::string& text, float out[3]) {
   return std::sscanf(text.c_str(), "%f,%f,%f", &out[0], &out[1], &out[2]) == 3;
-}
-
-relight::CameraView CameraFromBake(const relight::BakeCamera& cam) {
-  relight::CameraView view;
-  for (int i = 0; i < 3; ++i) {
-    view.position[i] = static_cast<float>(cam.position[i]) / 65536.0f;
-    view.target[i] = static_cast<float>(cam.target[i]) / 65536.0f;
-  }
-  view.fov_y_deg = static_cast<float>(cam.fov_y) / 65536.0f;
-  return view;
 }
 
 void PrintLuminaires(const relight::Engine& engine) {
@@ -98,27 +88,19 @@ int main(int argc, char** argv) {
     }
   }
 
-  relight::CameraView view = CameraFromBake(engine.bake().camera);
+  relight::CameraView view = relight::cli::CameraFromBake(engine.bake().camera);
   if (!camera_pos.empty() && !ParseVec3(camera_pos, view.position)) return Fail("--camera-pos wants X,Y,Z", 2);
   if (!camera_target.empty() && !ParseVec3(camera_target, view.target)) return Fail("--camera-target wants X,Y,Z", 2);
   if (fov > 0) view.fov_y_deg = static_cast<float>(fov);
 
-  relight::ToneMap tone_map;
-  const int32_t white_q12 = white_cd_m2 > 0 ? static_cast<int32_t>(std::lround(white_cd_m2 * 4096.0))
-                                            : engine.bake().white_luminance;
-  relight::BuildToneMap(white_q12, &tone_map);
-
-  relight::OsMesaFrame frame;
-  if (relight::Status st = frame.Init(width, height, engine.bake().mesh); !st.ok()) return Fail(st.ToString(), 1);
-  frame.SetCamera(view);
-
-  std::vector<uint8_t> vertex_rgb(static_cast<size_t>(engine.vertex_count()) * 3);
-  std::vector<uint8_t> pixels(static_cast<size_t>(width) * height * 3);
+  const int32_t white_q12 = white_cd_m2 > 0 ? static_cast<int32_t>(std::lround(white_cd_m2 * 4096.0)) : 0;
+  relight::cli::FramePipeline pipeline;
+  if (relight::Status st = pipeline.Init(engine, width, height, view, white_q12); !st.ok()) {
+    return Fail(st.ToString(), 1);
+  }
   const auto render_to = [&](const std::string& path) -> int {
-    engine.Update();
-    relight::ToneMapRgb8(tone_map, engine.vertex_luminance(), engine.vertex_count(), vertex_rgb.data());
-    if (relight::Status st = frame.Draw(vertex_rgb.data(), pixels.data()); !st.ok()) return Fail(st.ToString(), 1);
-    if (relight::Status st = relight::WritePngRgb8(path, pixels.data(), width, height); !st.ok()) {
+    if (relight::Status st = pipeline.Render(engine); !st.ok()) return Fail(st.ToString(), 1);
+    if (relight::Status st = relight::WritePngRgb8(path, pipeline.pixels(), width, height); !st.ok()) {
       return Fail(st.ToString(), 1);
     }
     return 0;
@@ -130,5 +112,5 @@ int main(int argc, char** argv) {
     return 0;
   }
   return relight::cli::RenderReplay(engine, replay_path, fps, out_path, render_to,
-                                    {sheet_path, pixels.data(), width, height});
+                                    {sheet_path, pipeline.pixels(), width, height});
 }

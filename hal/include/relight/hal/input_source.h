@@ -13,6 +13,13 @@
 
 namespace relight::hal {
 
+// The clock of a source's Poll(now_us) and of its changes' time_us.
+enum class SourceClock : uint8_t {
+  kScript,     // microseconds since the source's Start() (replay scripts)
+  kMonotonic,  // CLOCK_MONOTONIC microseconds (hal::MonotonicUs()); time_us is
+               // the change's arrival, which the daemon turns into latency
+};
+
 class InputSource {
  public:
   virtual ~InputSource() = default;
@@ -27,12 +34,24 @@ class InputSource {
   // True once a finite source (a replay script) has nothing more to give.
   bool Finished() const { return DoFinished(); }
   const char* Name() const { return DoName(); }
+  SourceClock clock() const { return DoClock(); }
+  // The daemon calls this after each frame is out: the frame number and the
+  // arrival-to-frame latency of the newest live change it shows (0: none).
+  // Modbus servers publish them as status registers; others ignore them.
+  // Thread-safe with respect to the source's own threads.
+  void OnFrameOut(uint32_t frame, uint32_t latency_us) { DoOnFrameOut(frame, latency_us); }
+  // Stops the source's threads and closes its devices and sockets (the
+  // destructor does too); Start() may be called again afterwards.
+  void Stop() { DoStop(); }
 
  private:
   virtual Status DoStart() = 0;
   virtual size_t DoPoll(int64_t now_us, ParamChange* out, size_t capacity) = 0;
   virtual bool DoFinished() const { return false; }
   virtual const char* DoName() const = 0;
+  virtual SourceClock DoClock() const { return SourceClock::kMonotonic; }
+  virtual void DoOnFrameOut(uint32_t /*frame*/, uint32_t /*latency_us*/) {}
+  virtual void DoStop() {}
 };
 
 }  // namespace relight::hal

@@ -27,6 +27,7 @@ class ReplaySource final : public InputSource {
   size_t DoPoll(int64_t now_us, ParamChange* out, size_t capacity) override;
   bool DoFinished() const override { return next_ >= changes_.size(); }
   const char* DoName() const override { return "replay"; }
+  SourceClock DoClock() const override { return SourceClock::kScript; }
 
   std::string path_;
   std::vector<ParamChange> changes_;

@@ -1,0 +1,48 @@
+// Modbus TCP server backend: a console, a wall panel or a PLC writes the
+// holding registers of register_map.h; the daemon polls the changes.
+//
+// One thread with its own libmodbus context serves every client through
+// poll() (libmodbus contexts are not thread-safe; no thread per client).
+// Frames are cut from each client's bounded buffer by their MBAP length, so
+// a client that sends half a request or nothing at all never holds up the
+// others; malformed frames close that client only. Listens on 127.0.0.1
+// unless configured otherwise; an allow-list refuses other peers.
+//
+// Thread safety: Start/Poll/Stop from one thread; counters(), port(),
+// holding_registers() and OnFrameOut() from any.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "relight/hal/input_source.h"
+#include "relight/hal/modbus_server.h"
+#include "relight/hal/patch.h"
+#include "relight/hal/register_map.h"
+
+namespace relight::hal {
+
+class ModbusTcpServer final : public InputSource {
+ public:
+  // `initial`: the holding registers' starting values (map.holding_count()),
+  // e.g. RegisterMap::Encode of the engine's state; zeros if empty.
+  ModbusTcpServer(ModbusTcpConfig config, const RegisterMap& map, std::vector<uint16_t> initial);
+  ~ModbusTcpServer() override;
+
+  int port() const;  // the port listened on, after Start() (config port 0 = any free one)
+  ModbusServerCounters counters() const;
+  std::vector<uint16_t> holding_registers() const;
+
+ private:
+  // Start: kIoError naming the address if it cannot listen.
+  Status DoStart() override;
+  size_t DoPoll(int64_t now_us, ParamChange* out, size_t capacity) override;
+  const char* DoName() const override { return "modbus-tcp"; }
+  void DoOnFrameOut(uint32_t frame, uint32_t latency_us) override;
+  void DoStop() override;
+
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace relight::hal

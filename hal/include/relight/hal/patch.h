@@ -1,0 +1,128 @@
+// The patch: which Modbus register or GPIO line drives which fixture
+// parameter, with each fixture's ranges, dimmer curve and fade time, and
+// which input backends relightd starts. A TOML file (docs/modbus.md shows a
+// full example); every error names file:line and what was expected.
+//
+//   [[fixture]]
+//   name = "ceiling_spot"
+//   modbus_base = 0        # first holding register, PDU (0-based) address
+//   pan_range_deg = 540    # 16-bit pan spans this, 32768 = 0 degrees
+//   tilt_range_deg = 270
+//   dimmer_curve = "square"
+//   fade_ms = 200
+//
+//   [modbus_tcp]
+//   port = 1502            # listens on 127.0.0.1 unless `listen` says otherwise
+//
+// A section ([modbus_tcp], [modbus_rtu], [modbus_poller], [[gpio_button]],
+// [[gpio_encoder]], [replay]) present = that backend is started.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "relight/hal/param_change.h"
+#include "relight/status.h"
+
+namespace relight::hal {
+
+enum class DimmerCurve : uint8_t { kLinear, kSquare };
+
+struct FixturePatch {
+  std::string name;
+  int modbus_base = -1;                // first of its 8 holding registers (PDU address); -1: next free block
+  int32_t pan_range_q16 = 540 << 16;   // degrees (Q16.16) spanned by the 16-bit pan register
+  int32_t tilt_range_q16 = 270 << 16;  // degrees (Q16.16) spanned by the 16-bit tilt register
+  DimmerCurve dimmer_curve = DimmerCurve::kLinear;
+  int32_t fade_ms = 0;                 // linear ramp to each new value; 0 = jump
+  int line = 0;                        // where it was declared (0: not from a file)
+};
+
+struct ModbusTcpConfig {
+  bool enabled = false;
+  std::string listen = "127.0.0.1";   // an IPv4 address; "0.0.0.0" = every interface
+  int port = 1502;                     // 0: any free port (tests)
+  std::vector<std::string> allow;      // client IPv4 addresses; empty = any
+  int max_clients = 16;
+  int idle_timeout_ms = 60000;         // a client silent this long is closed
+};
+
+struct ModbusRtuConfig {
+  bool enabled = false;
+  std::string device;                  // e.g. /dev/ttyUSB0
+  int baud = 19200;
+  char parity = 'N';                   // N, E or O
+  int data_bits = 8;
+  int stop_bits = 1;
+  int unit_id = 1;                     // our slave address, 1..247
+};
+
+// One register of the polled peer and what it drives. Values are read as
+// in our own map (docs/modbus.md): 16-bit dimmer, pan, tilt; 8-bit r, g, b.
+struct PollEntry {
+  int peer_register = 0;               // PDU address on the peer
+  std::string fixture;
+  Param param = Param::kDimmer;
+  int line = 0;
+};
+
+struct ModbusPollerConfig {
+  bool enabled = false;
+  std::string host = "127.0.0.1";
+  int port = 502;
+  int unit_id = 1;
+  int rate_hz = 10;
+  int timeout_ms = 500;                // per request
+  int backoff_max_ms = 5000;           // reconnect delay doubles up to this
+  std::vector<PollEntry> map;
+};
+
+enum class ButtonAction : uint8_t { kToggle, kPreset };
+
+struct GpioButtonConfig {
+  std::string chip;                    // "gpiochip0", a path or a label
+  int line = 0;                        // offset on the chip
+  bool active_low = true;              // pressed pulls the line low
+  int debounce_ms = 20;
+  ButtonAction action = ButtonAction::kToggle;
+  std::string fixture;                 // kToggle: the fixture switched on/off
+  int32_t on_level_q15 = 32767;        // kToggle: dimmer when on
+  std::vector<ParamChange> preset;     // kPreset: the changes recalled
+  int config_line = 0;
+};
+
+struct GpioEncoderConfig {
+  std::string chip;
+  int line_a = 0, line_b = 0;
+  std::string fixture;
+  Param param = Param::kDimmer;
+  int32_t step = 327;                  // per quadrature count: Q1.15 level, or Q16.16 degrees for pan/tilt
+  int32_t start = 0;                   // value before the first turn (same format)
+  int config_line = 0;
+};
+
+struct Patch {
+  std::vector<FixturePatch> fixtures;
+  ModbusTcpConfig modbus_tcp;
+  ModbusRtuConfig modbus_rtu;
+  ModbusPollerConfig modbus_poller;
+  std::vector<GpioButtonConfig> buttons;
+  std::vector<GpioEncoderConfig> encoders;
+  std::string replay_script;           // [replay] script = "..."; empty = none
+  std::string where;                   // the file, for messages
+};
+
+// kInvalidArgument with "file:line: what" for bad TOML, unknown keys, values
+// out of range; kNotFound / kIoError if the file cannot be read.
+Status ParsePatch(const std::string& text, const std::string& where, Patch* out);
+Status LoadPatch(const std::string& path, Patch* out);
+
+// Checks the patch against the bake's luminaires and completes it: every
+// fixture named must exist; luminaires the patch does not name are appended
+// with default settings; fixtures without modbus_base get the next free
+// 8-register block; blocks must not overlap or pass 65535. Buttons, encoders
+// and the poller map must name known fixtures.
+Status ResolvePatch(const std::vector<std::string>& luminaire_names, Patch* patch);
+
+}  // namespace relight::hal

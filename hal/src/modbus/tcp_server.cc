@@ -1,0 +1,244 @@
+// Modbus TCP server: one thread, poll() over a wake pipe, the listening
+// socket and every client; requests cut from per-client buffers by their
+// MBAP length and answered by libmodbus (modbus_reply) on that client's
+// socket.
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <thread>
+
+#include "register_bank.h"
+#include "relight/hal/clock.h"
+#include "relight/hal/log.h"
+#include "relight/hal/modbus_tcp_server.h"
+
+namespace relight::hal {
+namespace {
+
+constexpr int kMbapLength = 7;  // transaction(2) protocol(2) length(2) unit(1)
+constexpr size_t kClientBuffer = 2 * MODBUS_TCP_MAX_ADU_LENGTH;
+
+struct Client {
+  int fd = -1;
+  std::string peer;
+  uint8_t buf[kClientBuffer];
+  size_t len = 0;
+  int64_t last_us = 0;
+};
+
+std::string PeerName(const sockaddr_in& addr) {
+  char ip[INET_ADDRSTRLEN] = "?";
+  inet_ntop(AF_INET, &addr.sin_addr, ip, sizeof ip);
+  return std::string(ip) + ":" + std::to_string(ntohs(addr.sin_port));
+}
+
+}  // namespace
+
+struct ModbusTcpServer::Impl {
+  ModbusTcpConfig config;
+  RegisterBank bank;
+  modbus_t* ctx = nullptr;
+  int listen_fd = -1;
+  int wake[2] = {-1, -1};
+  int port = 0;
+  std::thread thread;
+  std::vector<std::unique_ptr<Client>> clients;
+  std::vector<in_addr_t> allow;
+
+  Impl(ModbusTcpConfig c, const RegisterMap& map, std::vector<uint16_t> initial)
+      : config(std::move(c)), bank(map, std::move(initial)) {}
+
+  void Close(size_t i, const char* why) {
+    Log(LogLevel::kInfo, "modbus-tcp: client %s %s", clients[i]->peer.c_str(), why);
+    close(clients[i]->fd);
+    clients.erase(clients.begin() + static_cast<long>(i));
+    bank.clients().store(static_cast<uint32_t>(clients.size()));
+  }
+
+  void Accept() {
+    sockaddr_in addr{};
+    socklen_t len = sizeof addr;
+    const int fd = accept4(listen_fd, reinterpret_cast<sockaddr*>(&addr), &len, SOCK_NONBLOCK | SOCK_CLOEXEC);
+    if (fd < 0) return;  // the peer gave up between poll() and accept(), or EMFILE: try again later
+    const std::string peer = PeerName(addr);
+    const bool allowed = allow.empty() || std::find(allow.begin(), allow.end(), addr.sin_addr.s_addr) != allow.end();
+    if (!allowed || static_cast<int>(clients.size()) >= config.max_clients) {
+      bank.refused().fetch_add(1);
+      Log(LogLevel::kWarning, "modbus-tcp: refused %s (%s)", peer.c_str(),
+          allowed ? "too many clients" : "not in the allow-list");
+      close(fd);
+      return;
+    }
+    const int one = 1;
+    setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+    auto client = std::make_unique<Client>();
+    client->fd = fd;
+    client->peer = peer;
+    client->last_us = MonotonicUs();
+    clients.push_back(std::move(client));
+    bank.clients().store(static_cast<uint32_t>(clients.size()));
+    Log(LogLevel::kInfo, "modbus-tcp: client %s connected", peer.c_str());
+  }
+
+  // Reads what is there and answers every complete request. False: close it.
+  bool Serve(Client& c, const char** why) {
+    const ssize_t n = read(c.fd, c.buf + c.len, kClientBuffer - c.len);
+    if (n == 0) {
+      *why = "disconnected";
+      return false;
+    }
+    if (n < 0) {
+      if (errno == EAGAIN || errno == EINTR) return true;
+      *why = "lost (read error)";
+      return false;
+    }
+    const int64_t arrival_us = MonotonicUs();
+    c.last_us = arrival_us;
+    c.len += static_cast<size_t>(n);
+    size_t start = 0;
+    while (c.len - start >= kMbapLength) {
+      const uint8_t* f = c.buf + start;
+      const int protocol = (f[2] << 8) | f[3];
+      const int length = (f[4] << 8) | f[5];  // unit id + PDU
+      if (protocol != 0 || length < 2 || length > MODBUS_TCP_MAX_ADU_LENGTH - 6) {
+        bank.bad_frames().fetch_add(1);
+        *why = "sent a malformed frame (bad MBAP header); closed";
+        return false;  // a TCP stream cannot be resynchronised
+      }
+      const size_t frame_len = 6 + static_cast<size_t>(length);
+      if (c.len - start < frame_len) break;
+      uint8_t req[MODBUS_TCP_MAX_ADU_LENGTH + 8] = {};  // padded: libmodbus may read a little past a short PDU
+      std::memcpy(req, f, frame_len);
+      modbus_set_socket(ctx, c.fd);
+      if (!bank.HandleRequest(ctx, req, static_cast<int>(frame_len), 0, arrival_us)) {
+        *why = "sent a malformed request or stopped reading answers; closed";
+        return false;
+      }
+      start += frame_len;
+    }
+    std::memmove(c.buf, c.buf + start, c.len - start);
+    c.len -= start;
+    return true;
+  }
+
+  void Run() {
+    std::vector<pollfd> fds;
+    for (;;) {
+      fds.clear();
+      fds.push_back({wake[0], POLLIN, 0});
+      fds.push_back({listen_fd, POLLIN, 0});
+      for (const auto& c : clients) fds.push_back({c->fd, POLLIN, 0});
+      const int rc = poll(fds.data(), fds.size(), 250);
+      if (rc < 0 && errno != EINTR) {
+        Log(LogLevel::kError, "modbus-tcp: poll: %s; server thread stops", std::strerror(errno));
+        return;
+      }
+      if (fds[0].revents != 0) return;  // Stop()
+      const int64_t now_us = MonotonicUs();
+      // Clients first (fds[2..] match clients[0..] until one is closed), then accept.
+      const size_t served = clients.size();
+      for (size_t i = served; i-- > 0;) {
+        const short ev = fds[2 + i].revents;
+        const char* why = "idle too long; closed";
+        bool keep = true;
+        if (ev & (POLLIN | POLLHUP | POLLERR)) {
+          keep = Serve(*clients[i], &why);
+        } else if (now_us - clients[i]->last_us > int64_t{config.idle_timeout_ms} * 1000) {
+          keep = false;
+        }
+        if (!keep) Close(i, why);
+      }
+      if (fds[1].revents & POLLIN) Accept();
+    }
+  }
+
+  void Shutdown() {
+    if (thread.joinable()) {
+      const char byte = 1;
+      if (write(wake[1], &byte, 1) < 0) {
+        // The pipe cannot be full (one byte per Stop); nothing else to do.
+      }
+      thread.join();
+    }
+    while (!clients.empty()) {
+      close(clients.back()->fd);
+      clients.pop_back();
+    }
+    bank.clients().store(0);
+    if (listen_fd >= 0) close(listen_fd);
+    listen_fd = -1;
+    for (int& fd : wake) {
+      if (fd >= 0) close(fd);
+      fd = -1;
+    }
+    if (ctx != nullptr) {
+      modbus_set_socket(ctx, -1);
+      modbus_free(ctx);
+    }
+    ctx = nullptr;
+  }
+};
+
+ModbusTcpServer::ModbusTcpServer(ModbusTcpConfig config, const RegisterMap& map, std::vector<uint16_t> initial)
+    : impl_(std::make_unique<Impl>(std::move(config), map, std::move(initial))) {}
+
+ModbusTcpServer::~ModbusTcpServer() { impl_->Shutdown(); }
+
+int ModbusTcpServer::port() const { return impl_->port; }
+ModbusServerCounters ModbusTcpServer::counters() const { return impl_->bank.counters(); }
+std::vector<uint16_t> ModbusTcpServer::holding_registers() const { return impl_->bank.input().Snapshot(); }
+
+Status ModbusTcpServer::DoStart() {
+  Impl& m = *impl_;
+  m.Shutdown();
+  const std::string where = "modbus-tcp: " + m.config.listen + ":" + std::to_string(m.config.port);
+  m.allow.clear();
+  for (const std::string& a : m.config.allow) {
+    in_addr addr{};
+    if (inet_pton(AF_INET, a.c_str(), &addr) != 1) {
+      return Status(StatusCode::kInvalidArgument, where + ": allow-list entry '" + a + "' is not an IPv4 address");
+    }
+    m.allow.push_back(addr.s_addr);
+  }
+  RELIGHT_RETURN_IF_ERROR(m.bank.Init());
+  // libmodbus treats an address starting with '0' as "every interface".
+  m.ctx = modbus_new_tcp(m.config.listen.c_str(), m.config.port);
+  if (m.ctx == nullptr) return Status(StatusCode::kInternal, where + ": modbus_new_tcp failed");
+  m.listen_fd = modbus_tcp_listen(m.ctx, 16);
+  if (m.listen_fd < 0) {
+    const std::string why = std::strerror(errno);
+    m.Shutdown();
+    return Status(StatusCode::kIoError, where + ": cannot listen: " + why);
+  }
+  fcntl(m.listen_fd, F_SETFL, fcntl(m.listen_fd, F_GETFL) | O_NONBLOCK);
+  sockaddr_in bound{};
+  socklen_t len = sizeof bound;
+  getsockname(m.listen_fd, reinterpret_cast<sockaddr*>(&bound), &len);
+  m.port = ntohs(bound.sin_port);
+  if (pipe2(m.wake, O_CLOEXEC | O_NONBLOCK) != 0) {
+    m.Shutdown();
+    return Status(StatusCode::kIoError, where + ": pipe: " + std::strerror(errno));
+  }
+  m.thread = std::thread([&m] { m.Run(); });
+  Log(LogLevel::kInfo, "modbus-tcp: listening on %s:%d (%d fixtures, holding registers 0..%d)", m.config.listen.c_str(),
+      m.port, m.bank.input().map().fixture_count(), m.bank.input().map().holding_count() - 1);
+  return Status::Ok();
+}
+
+size_t ModbusTcpServer::DoPoll(int64_t /*now_us*/, ParamChange* out, size_t capacity) {
+  return impl_->bank.input().Collect(out, capacity);
+}
+
+void ModbusTcpServer::DoOnFrameOut(uint32_t frame, uint32_t latency_us) { impl_->bank.PublishFrame(frame, latency_us); }
+
+void ModbusTcpServer::DoStop() { impl_->Shutdown(); }
+
+}  // namespace relight::hal

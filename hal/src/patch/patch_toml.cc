@@ -1,0 +1,367 @@
+// Patch file reader: TOML -> Patch, every error as "file:line: what".
+#include <arpa/inet.h>
+#include <toml++/toml.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+
+#include "relight/hal/patch.h"
+
+namespace relight::hal {
+namespace {
+
+// Thrown inside this file only; ParsePatch turns it into a Status.
+struct PatchError {
+  std::string message;
+};
+
+class Table {
+ public:
+  Table(const toml::table& table, const std::string& where, std::string what)
+      : t_(table), where_(where), what_(std::move(what)) {}
+
+  int line() const { return static_cast<int>(t_.source().begin.line); }
+
+  [[noreturn]] void Fail(const toml::node* node, const std::string& why) const {
+    const int line_no = node != nullptr ? static_cast<int>(node->source().begin.line) : line();
+    throw PatchError{where_ + ":" + std::to_string(line_no) + ": " + what_ + ": " + why};
+  }
+
+  void CheckKeys(std::initializer_list<const char*> allowed) const {
+    for (const auto& [key, node] : t_) {
+      bool known = false;
+      for (const char* a : allowed) known = known || key.str() == a;
+      if (!known) {
+        std::string list;
+        for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+        Fail(&node, "unknown key '" + std::string(key.str()) + "' (known: " + list + ")");
+      }
+    }
+  }
+
+  bool Has(const char* key) const { return t_.contains(key); }
+
+  std::string String(const char* key, const std::string& fallback, bool required = false) const {
+    const toml::node* node = t_.get(key);
+    if (node == nullptr) {
+      if (required) Fail(nullptr, std::string("missing '") + key + "'");
+      return fallback;
+    }
+    const auto v = node->value<std::string>();
+    if (!node->is_string() || !v) Fail(node, std::string("'") + key + "' must be a string");
+    return *v;
+  }
+
+  int64_t Int(const char* key, int64_t fallback, int64_t lo, int64_t hi, bool required = false) const {
+    const toml::node* node = t_.get(key);
+    if (node == nullptr) {
+      if (required) Fail(nullptr, std::string("missing '") + key + "'");
+      return fallback;
+    }
+    if (!node->is_integer()) Fail(node, std::string("'") + key + "' must be an integer");
+    const int64_t v = *node->value<int64_t>();
+    if (v < lo || v > hi) {
+      Fail(node, std::string("'") + key + "' must be in " + std::to_string(lo) + ".." + std::to_string(hi) +
+                     ", got " + std::to_string(v));
+    }
+    return v;
+  }
+
+  double Number(const char* key, double fallback, double lo, double hi) const {
+    const toml::node* node = t_.get(key);
+    if (node == nullptr) return fallback;
+    if (!node->is_number()) Fail(node, std::string("'") + key + "' must be a number");
+    const double v = *node->value<double>();
+    if (!std::isfinite(v) || v < lo || v > hi) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "'%s' must be in %g..%g, got %g", key, lo, hi, v);
+      Fail(node, buf);
+    }
+    return v;
+  }
+
+  bool Bool(const char* key, bool fallback) const {
+    const toml::node* node = t_.get(key);
+    if (node == nullptr) return fallback;
+    if (!node->is_boolean()) Fail(node, std::string("'") + key + "' must be true or false");
+    return *node->value<bool>();
+  }
+
+  const toml::array* Array(const char* key) const {
+    const toml::node* node = t_.get(key);
+    if (node == nullptr) return nullptr;
+    if (!node->is_array()) Fail(node, std::string("'") + key + "' must be an array");
+    return node->as_array();
+  }
+
+  const toml::node* Node(const char* key) const { return t_.get(key); }
+
+ private:
+  const toml::table& t_;
+  const std::string& where_;
+  std::string what_;
+};
+
+int32_t DegreesQ16(double deg) { return static_cast<int32_t>(std::llround(deg * 65536.0)); }
+int32_t LevelQ15(double level) { return static_cast<int32_t>(std::lround(level * 32767.0)); }
+
+Param ParseParamName(const Table& t, const char* key, const std::string& name) {
+  if (name == "pan") return Param::kPan;
+  if (name == "tilt") return Param::kTilt;
+  if (name == "dimmer") return Param::kDimmer;
+  if (name == "r") return Param::kRed;
+  if (name == "g") return Param::kGreen;
+  if (name == "b") return Param::kBlue;
+  t.Fail(t.Node(key), std::string("'") + key + "' must be one of pan, tilt, dimmer, r, g, b; got '" + name + "'");
+}
+
+// Each [[name]] entry, or an error if `name` is not an array of tables.
+template <typename Fn>
+void ForEachTable(const toml::table& root, const std::string& where, const char* name, Fn fn) {
+  const toml::node* node = root.get(name);
+  if (node == nullptr) return;
+  const toml::array* arr = node->as_array();
+  if (arr == nullptr || !arr->is_array_of_tables()) {
+    throw PatchError{where + ":" + std::to_string(node->source().begin.line) + ": '" + name +
+                     "' must be an array of tables ([[" + name + "]])"};
+  }
+  int index = 0;
+  for (const toml::node& item : *arr) fn(*item.as_table(), ++index);
+}
+
+const toml::table* Section(const toml::table& root, const std::string& where, const char* name) {
+  const toml::node* node = root.get(name);
+  if (node == nullptr) return nullptr;
+  if (!node->is_table()) {
+    throw PatchError{where + ":" + std::to_string(node->source().begin.line) + ": '" + name +
+                     "' must be a table ([" + name + "])"};
+  }
+  return node->as_table();
+}
+
+void ParseFixture(const Table& t, Patch* patch) {
+  t.CheckKeys({"name", "modbus_base", "pan_range_deg", "tilt_range_deg", "dimmer_curve", "fade_ms"});
+  FixturePatch f;
+  f.line = t.line();
+  f.name = t.String("name", "", true);
+  ParamChange probe[3];
+  std::string error;
+  if (ParseParamText(f.name + ".dimmer=0", 0, probe, &error) != 1) {
+    t.Fail(t.Node("name"), "name '" + f.name + "' must be 1.." + std::to_string(kMaxFixtureName) +
+                               " of A-Z a-z 0-9 _ -");
+  }
+  f.modbus_base = static_cast<int>(t.Int("modbus_base", -1, 0, 65535 - 7));
+  f.pan_range_q16 = DegreesQ16(t.Number("pan_range_deg", 540, 1, 1440));
+  f.tilt_range_q16 = DegreesQ16(t.Number("tilt_range_deg", 270, 1, 1440));
+  const std::string curve = t.String("dimmer_curve", "linear");
+  if (curve == "linear") {
+    f.dimmer_curve = DimmerCurve::kLinear;
+  } else if (curve == "square") {
+    f.dimmer_curve = DimmerCurve::kSquare;
+  } else {
+    t.Fail(t.Node("dimmer_curve"), "dimmer_curve must be \"linear\" or \"square\", got \"" + curve + "\"");
+  }
+  f.fade_ms = static_cast<int32_t>(t.Int("fade_ms", 0, 0, 600000));
+  for (const FixturePatch& other : patch->fixtures) {
+    if (other.name == f.name) {
+      t.Fail(nullptr, "fixture '" + f.name + "' is patched twice (first at line " + std::to_string(other.line) + ")");
+    }
+  }
+  patch->fixtures.push_back(f);
+}
+
+void ParseTcp(const Table& t, Patch* patch) {
+  t.CheckKeys({"listen", "port", "allow", "max_clients", "idle_timeout_ms"});
+  ModbusTcpConfig& c = patch->modbus_tcp;
+  c.enabled = true;
+  c.listen = t.String("listen", c.listen);
+  in_addr addr{};
+  if (inet_pton(AF_INET, c.listen.c_str(), &addr) != 1) {
+    t.Fail(t.Node("listen"), "listen must be an IPv4 address such as \"127.0.0.1\", got \"" + c.listen + "\"");
+  }
+  c.port = static_cast<int>(t.Int("port", c.port, 0, 65535));
+  if (const toml::array* allow = t.Array("allow")) {
+    for (const toml::node& item : *allow) {
+      const auto v = item.value<std::string>();
+      if (!item.is_string() || inet_pton(AF_INET, v->c_str(), &addr) != 1) {
+        t.Fail(&item, "allow must list IPv4 addresses as strings, e.g. [\"127.0.0.1\"]");
+      }
+      c.allow.push_back(*v);
+    }
+  }
+  c.max_clients = static_cast<int>(t.Int("max_clients", c.max_clients, 1, 256));
+  c.idle_timeout_ms = static_cast<int>(t.Int("idle_timeout_ms", c.idle_timeout_ms, 100, 86400000));
+}
+
+void ParseRtu(const Table& t, Patch* patch) {
+  t.CheckKeys({"device", "baud", "parity", "data_bits", "stop_bits", "unit_id"});
+  ModbusRtuConfig& c = patch->modbus_rtu;
+  c.enabled = true;
+  c.device = t.String("device", "", true);
+  c.baud = static_cast<int>(t.Int("baud", c.baud, 300, 4000000));
+  const std::string parity = t.String("parity", "none");
+  if (parity == "none") {
+    c.parity = 'N';
+  } else if (parity == "even") {
+    c.parity = 'E';
+  } else if (parity == "odd") {
+    c.parity = 'O';
+  } else {
+    t.Fail(t.Node("parity"), "parity must be \"none\", \"even\" or \"odd\", got \"" + parity + "\"");
+  }
+  c.data_bits = static_cast<int>(t.Int("data_bits", c.data_bits, 7, 8));
+  c.stop_bits = static_cast<int>(t.Int("stop_bits", c.stop_bits, 1, 2));
+  c.unit_id = static_cast<int>(t.Int("unit_id", c.unit_id, 1, 247));
+}
+
+void ParsePoller(const Table& t, const std::string& where, Patch* patch) {
+  t.CheckKeys({"host", "port", "unit_id", "rate_hz", "timeout_ms", "backoff_max_ms", "map"});
+  ModbusPollerConfig& c = patch->modbus_poller;
+  c.enabled = true;
+  c.host = t.String("host", c.host);
+  in_addr addr{};
+  if (inet_pton(AF_INET, c.host.c_str(), &addr) != 1) {
+    t.Fail(t.Node("host"), "host must be an IPv4 address, got \"" + c.host + "\"");
+  }
+  c.port = static_cast<int>(t.Int("port", c.port, 1, 65535));
+  c.unit_id = static_cast<int>(t.Int("unit_id", c.unit_id, 0, 255));
+  c.rate_hz = static_cast<int>(t.Int("rate_hz", c.rate_hz, 1, 1000));
+  c.timeout_ms = static_cast<int>(t.Int("timeout_ms", c.timeout_ms, 10, 60000));
+  c.backoff_max_ms = static_cast<int>(t.Int("backoff_max_ms", c.backoff_max_ms, 10, 600000));
+  const toml::array* map = t.Array("map");
+  if (map == nullptr || map->empty()) t.Fail(nullptr, "needs a 'map' of {register, fixture, param} entries");
+  for (const toml::node& item : *map) {
+    if (!item.is_table()) t.Fail(&item, "each map entry must be {register = N, fixture = \"name\", param = \"dimmer\"}");
+    const Table e(*item.as_table(), where, "[modbus_poller] map entry");
+    e.CheckKeys({"register", "fixture", "param"});
+    PollEntry entry;
+    entry.line = static_cast<int>(item.source().begin.line);
+    entry.peer_register = static_cast<int>(e.Int("register", 0, 0, 65535, true));
+    entry.fixture = e.String("fixture", "", true);
+    entry.param = ParseParamName(e, "param", e.String("param", "", true));
+    c.map.push_back(entry);
+  }
+  int lo = 65535, hi = 0;
+  for (const PollEntry& e : c.map) {
+    lo = e.peer_register < lo ? e.peer_register : lo;
+    hi = e.peer_register > hi ? e.peer_register : hi;
+  }
+  if (hi - lo + 1 > 125) {
+    t.Fail(t.Node("map"), "mapped registers span " + std::to_string(hi - lo + 1) +
+                              " addresses; one read covers at most 125");
+  }
+}
+
+void ParseButton(const Table& t, Patch* patch) {
+  t.CheckKeys({"chip", "line", "active_low", "debounce_ms", "action", "fixture", "on_level", "preset"});
+  GpioButtonConfig b;
+  b.config_line = t.line();
+  b.chip = t.String("chip", "", true);
+  b.line = static_cast<int>(t.Int("line", 0, 0, 1023, true));
+  b.active_low = t.Bool("active_low", true);
+  b.debounce_ms = static_cast<int>(t.Int("debounce_ms", b.debounce_ms, 0, 1000));
+  const std::string action = t.String("action", "toggle");
+  if (action == "toggle") {
+    b.action = ButtonAction::kToggle;
+    b.fixture = t.String("fixture", "", true);
+    b.on_level_q15 = LevelQ15(t.Number("on_level", 1.0, 0.0, 1.0));
+    if (t.Has("preset")) t.Fail(t.Node("preset"), "'preset' goes with action = \"preset\"");
+  } else if (action == "preset") {
+    b.action = ButtonAction::kPreset;
+    const toml::array* preset = t.Array("preset");
+    if (preset == nullptr || preset->empty()) {
+      t.Fail(nullptr, "action = \"preset\" needs preset = [\"FIXTURE.PARAM=VALUE\", ...]");
+    }
+    for (const toml::node& item : *preset) {
+      const auto text = item.value<std::string>();
+      ParamChange parsed[3];
+      std::string error;
+      const int n = item.is_string() ? ParseParamText(*text, 0, parsed, &error) : 0;
+      if (n == 0) t.Fail(&item, "preset: " + (item.is_string() ? error : std::string("entries must be strings")));
+      b.preset.insert(b.preset.end(), parsed, parsed + n);
+    }
+  } else {
+    t.Fail(t.Node("action"), "action must be \"toggle\" or \"preset\", got \"" + action + "\"");
+  }
+  patch->buttons.push_back(std::move(b));
+}
+
+void ParseEncoder(const Table& t, Patch* patch) {
+  t.CheckKeys({"chip", "line_a", "line_b", "fixture", "param", "step", "start"});
+  GpioEncoderConfig e;
+  e.config_line = t.line();
+  e.chip = t.String("chip", "", true);
+  e.line_a = static_cast<int>(t.Int("line_a", 0, 0, 1023, true));
+  e.line_b = static_cast<int>(t.Int("line_b", 0, 0, 1023, true));
+  if (e.line_a == e.line_b) t.Fail(t.Node("line_b"), "line_a and line_b must differ");
+  e.fixture = t.String("fixture", "", true);
+  e.param = ParseParamName(t, "param", t.String("param", "dimmer"));
+  const bool angle = e.param == Param::kPan || e.param == Param::kTilt;
+  if (angle) {
+    e.step = DegreesQ16(t.Number("step", 1.0, 0.001, 90.0));
+    e.start = DegreesQ16(t.Number("start", 0.0, -720.0, 720.0));
+  } else {
+    e.step = LevelQ15(t.Number("step", 0.01, 1.0 / 32767.0, 1.0));
+    e.start = LevelQ15(t.Number("start", 0.0, 0.0, 1.0));
+  }
+  patch->encoders.push_back(e);
+}
+
+}  // namespace
+
+Status ParsePatch(const std::string& text, const std::string& where, Patch* out) {
+  Patch patch;
+  patch.where = where;
+  try {
+    toml::table root;
+    try {
+      root = toml::parse(text, where);
+    } catch (const toml::parse_error& e) {
+      return Status(StatusCode::kInvalidArgument, where + ":" + std::to_string(e.source().begin.line) + ": " +
+                                                      std::string(e.description()));
+    }
+    const Table top(root, where, "patch");
+    top.CheckKeys({"fixture", "modbus_tcp", "modbus_rtu", "modbus_poller", "gpio_button", "gpio_encoder", "replay"});
+    ForEachTable(root, where, "fixture", [&](const toml::table& t, int i) {
+      ParseFixture(Table(t, where, "fixture " + std::to_string(i)), &patch);
+    });
+    if (const toml::table* t = Section(root, where, "modbus_tcp")) ParseTcp(Table(*t, where, "[modbus_tcp]"), &patch);
+    if (const toml::table* t = Section(root, where, "modbus_rtu")) ParseRtu(Table(*t, where, "[modbus_rtu]"), &patch);
+    if (const toml::table* t = Section(root, where, "modbus_poller")) {
+      ParsePoller(Table(*t, where, "[modbus_poller]"), where, &patch);
+    }
+    ForEachTable(root, where, "gpio_button", [&](const toml::table& t, int i) {
+      ParseButton(Table(t, where, "gpio_button " + std::to_string(i)), &patch);
+    });
+    ForEachTable(root, where, "gpio_encoder", [&](const toml::table& t, int i) {
+      ParseEncoder(Table(t, where, "gpio_encoder " + std::to_string(i)), &patch);
+    });
+    if (const toml::table* t = Section(root, where, "replay")) {
+      const Table replay(*t, where, "[replay]");
+      replay.CheckKeys({"script"});
+      patch.replay_script = replay.String("script", "", true);
+    }
+  } catch (const PatchError& e) {
+    return Status(StatusCode::kInvalidArgument, e.message);
+  }
+  *out = std::move(patch);
+  return Status::Ok();
+}
+
+Status LoadPatch(const std::string& path, Patch* out) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    return Status(errno == ENOENT ? StatusCode::kNotFound : StatusCode::kIoError,
+                  "patch '" + path + "': " + std::strerror(errno));
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ParsePatch(text.str(), path, out);
+}
+
+}  // namespace relight::hal

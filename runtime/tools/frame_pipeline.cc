@@ -1,0 +1,30 @@
+#include "frame_pipeline.h"
+
+namespace relight::cli {
+
+CameraView CameraFromBake(const BakeCamera& cam) {
+  CameraView view;
+  for (int i = 0; i < 3; ++i) {
+    view.position[i] = static_cast<float>(cam.position[i]) / 65536.0f;
+    view.target[i] = static_cast<float>(cam.target[i]) / 65536.0f;
+  }
+  view.fov_y_deg = static_cast<float>(cam.fov_y) / 65536.0f;
+  return view;
+}
+
+Status FramePipeline::Init(const Engine& engine, int width, int height, const CameraView& view, int32_t white_q12) {
+  BuildToneMap(white_q12 > 0 ? white_q12 : engine.bake().white_luminance, &tone_map_);
+  RELIGHT_RETURN_IF_ERROR(frame_.Init(width, height, engine.bake().mesh));
+  frame_.SetCamera(view);
+  vertex_rgb_.assign(static_cast<size_t>(engine.vertex_count()) * 3, 0);
+  pixels_.assign(static_cast<size_t>(width) * height * 3, 0);
+  return Status::Ok();
+}
+
+Status FramePipeline::Render(Engine& engine) {
+  engine.Update();
+  ToneMapRgb8(tone_map_, engine.vertex_luminance(), engine.vertex_count(), vertex_rgb_.data());
+  return frame_.Draw(vertex_rgb_.data(), pixels_.data());
+}
+
+}  // namespace relight::cli

@@ -1,0 +1,38 @@
+// The frame step shared by relight-render and relightd: engine state ->
+// Update() -> tone map -> OSMesa draw -> an 8-bit RGB frame (top row first).
+//
+// Thread safety: one thread (OSMesa contexts are per thread).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "relight/engine.h"
+#include "relight/osmesa_frame.h"
+#include "relight/tone_map.h"
+
+namespace relight::cli {
+
+// The bake's camera as the renderer's floats.
+CameraView CameraFromBake(const BakeCamera& camera);
+
+class FramePipeline {
+ public:
+  // white_q12 <= 0: the bake's display white. kInvalidArgument / kInternal
+  // from OsMesaFrame::Init.
+  Status Init(const Engine& engine, int width, int height, const CameraView& view, int32_t white_q12);
+  // Brings the engine up to date and draws; the frame is in pixels().
+  Status Render(Engine& engine);
+
+  const uint8_t* pixels() const { return pixels_.data(); }
+  int width() const { return frame_.width(); }
+  int height() const { return frame_.height(); }
+
+ private:
+  OsMesaFrame frame_;
+  ToneMap tone_map_;
+  std::vector<uint8_t> vertex_rgb_;
+  std::vector<uint8_t> pixels_;
+};
+
+}  // namespace relight::cli

@@ -1,0 +1,45 @@
+// Shared set-up for hal tests: a resolved two-fixture patch and its map.
+//   spot: holding registers 0..7, pan over 540 deg, tilt over 270 deg
+//   wash: holding registers 8..15, pan over 360 deg, tilt over 180 deg
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "relight/hal/patch.h"
+#include "relight/hal/register_map.h"
+
+namespace relight::hal::testing {
+
+inline Patch TwoFixturePatch() {
+  Patch patch;
+  const Status st = ParsePatch(
+      "[[fixture]]\nname = \"spot\"\n"
+      "[[fixture]]\nname = \"wash\"\npan_range_deg = 360\ntilt_range_deg = 180\n",
+      "test.toml", &patch);
+  EXPECT_TRUE(st.ok()) << st.ToString();
+  EXPECT_TRUE(ResolvePatch({"spot", "wash"}, &patch).ok());
+  return patch;
+}
+
+inline RegisterMap MapOf(const Patch& patch) {
+  RegisterMap map;
+  const Status st = RegisterMap::Build(patch.fixtures, &map);
+  EXPECT_TRUE(st.ok()) << st.ToString();
+  return map;
+}
+
+// Registers at rest: dimmer 0, pan/tilt centred (0 deg), colour 0, on.
+inline std::vector<uint16_t> RestRegisters(const RegisterMap& map) {
+  std::vector<uint16_t> regs(static_cast<size_t>(map.holding_count()), 0);
+  for (int f = 0; f < map.fixture_count(); ++f) {
+    const int base = map.fixture(f).modbus_base;
+    regs[static_cast<size_t>(base + kRegPan)] = 32768;
+    regs[static_cast<size_t>(base + kRegTilt)] = 32768;
+    regs[static_cast<size_t>(base + kRegFlags)] = kFlagOn;
+  }
+  return regs;
+}
+
+}  // namespace relight::hal::testing

@@ -1,0 +1,170 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "hal_test_support.h"
+#include "modbus/request_check.h"
+#include "register_input.h"
+#include "relight/hal/register_map.h"
+
+namespace relight::hal {
+namespace {
+
+using testing::MapOf;
+using testing::RestRegisters;
+using testing::TwoFixturePatch;
+
+TEST(RegisterValues, AnglesMatchAFloatReferenceToHalfAnLsb) {
+  for (const int32_t range_deg : {540, 360, 270, 180}) {
+    for (int reg = 0; reg <= 65535; reg += 7) {
+      const double ref_deg = (reg - 32768.0) / 65536.0 * range_deg;
+      const int32_t q = AngleQ16FromRegister(static_cast<uint16_t>(reg), range_deg << 16);
+      EXPECT_LE(std::fabs(q - ref_deg * 65536.0), 0.5) << reg << " over " << range_deg;
+    }
+  }
+  EXPECT_EQ(AngleQ16FromRegister(32768, 540 << 16), 0);      // centre = 0 degrees
+  EXPECT_EQ(AngleQ16FromRegister(0, 540 << 16), -(270 << 16));  // one end = -range / 2
+}
+
+TEST(RegisterValues, AngleEncodeDecodeRoundTripsEveryRegister) {
+  for (int reg = 0; reg <= 65535; ++reg) {
+    const int32_t deg = AngleQ16FromRegister(static_cast<uint16_t>(reg), 540 << 16);
+    EXPECT_EQ(RegisterFromAngleQ16(deg, 540 << 16), reg);
+  }
+  EXPECT_EQ(RegisterFromAngleQ16(400 << 16, 540 << 16), 65535);  // beyond the range: clamped
+  EXPECT_EQ(RegisterFromAngleQ16(-(400 << 16), 540 << 16), 0);
+}
+
+TEST(RegisterValues, LevelsRoundToNearestAndRoundTrip) {
+  EXPECT_EQ(LevelQ15FromRegister16(0), 0);
+  EXPECT_EQ(LevelQ15FromRegister16(65535), 32767);
+  EXPECT_EQ(LevelQ15FromByte(255), 32767);
+  EXPECT_EQ(LevelQ15FromByte(128), 16448);  // 128/255 * 32767 = 16447.9
+  for (int reg = 0; reg <= 65535; reg += 3) {
+    EXPECT_LE(std::fabs(LevelQ15FromRegister16(static_cast<uint16_t>(reg)) - reg * 32767.0 / 65535.0), 0.5);
+  }
+  // The 16-bit grid is finer than Q1.15: level -> register -> level is exact.
+  for (int level = 0; level <= 32767; ++level) {
+    EXPECT_EQ(LevelQ15FromRegister16(Register16FromLevelQ15(level)), level);
+  }
+  for (int b = 0; b <= 255; ++b) EXPECT_EQ(ByteFromLevelQ15(LevelQ15FromByte(static_cast<uint16_t>(b))), b);
+}
+
+TEST(RegisterMap, ChecksAddressesAndValues) {
+  const RegisterMap map = MapOf(TwoFixturePatch());
+  EXPECT_EQ(map.holding_count(), 16);
+  EXPECT_EQ(map.CheckWrite(0, 65535), 0);    // dimmer: any value
+  EXPECT_EQ(map.CheckWrite(9, 0), 0);        // wash pan
+  EXPECT_EQ(map.CheckWrite(3, 255), 0);      // red
+  EXPECT_EQ(map.CheckWrite(3, 256), kExceptionIllegalValue);
+  EXPECT_EQ(map.CheckWrite(13, 1000), kExceptionIllegalValue);  // wash blue
+  EXPECT_EQ(map.CheckWrite(6, 1), kExceptionIllegalValue);      // profile: only 0
+  EXPECT_EQ(map.CheckWrite(7, 1), 0);                           // flags: on
+  EXPECT_EQ(map.CheckWrite(7, 2), kExceptionIllegalValue);      // reserved bit
+  EXPECT_EQ(map.CheckWrite(16, 0), kExceptionIllegalAddress);
+  EXPECT_EQ(map.CheckWrite(-1, 0), kExceptionIllegalAddress);
+}
+
+TEST(RegisterMap, DecodesOnlyWhatChangedAndHonoursTheOnFlag) {
+  const RegisterMap map = MapOf(TwoFixturePatch());
+  std::vector<uint16_t> before = RestRegisters(map), after = before;
+  after[8 + kRegPan] = 32768 + 16384;  // wash pan: a quarter of 360 degrees
+  after[8 + kRegDimmer] = 65535;
+  ParamChange out[6];
+  size_t n = map.DecodeChanges(1, &before[8], &after[8], 42, out);
+  ASSERT_EQ(n, 2u);
+  EXPECT_STREQ(out[0].fixture, "wash");
+  EXPECT_EQ(out[0].param, Param::kDimmer);
+  EXPECT_EQ(out[0].value, 32767);
+  EXPECT_EQ(out[1].param, Param::kPan);
+  EXPECT_EQ(out[1].value, 90 << 16);
+  EXPECT_EQ(out[1].time_us, 42);
+  // Off: the dimmer output goes to 0 whatever the dimmer register holds.
+  before = after;
+  after[8 + kRegFlags] = 0;
+  n = map.DecodeChanges(1, &before[8], &after[8], 0, out);
+  ASSERT_EQ(n, 1u);
+  EXPECT_EQ(out[0].param, Param::kDimmer);
+  EXPECT_EQ(out[0].value, 0);
+  // Dimmer moved while off: nothing to show.
+  before = after;
+  after[8 + kRegDimmer] = 100;
+  EXPECT_EQ(map.DecodeChanges(1, &before[8], &after[8], 0, out), 0u);
+}
+
+TEST(RegisterInput, CoalescesToTheNewestValues) {
+  const RegisterMap map = MapOf(TwoFixturePatch());
+  RegisterInput input(map, RestRegisters(map));
+  ParamChange out[16];
+  EXPECT_EQ(input.Collect(out, 16), 0u);  // the initial image is not a change
+  for (uint16_t v = 1; v <= 100; ++v) input.Write(kRegRed, 1, &v, v);  // 100 writes, out of range clamps later
+  const uint16_t tilt = 0;
+  input.Write(10, 1, &tilt, 500);
+  const size_t n = input.Collect(out, 16);
+  ASSERT_EQ(n, 2u);
+  EXPECT_EQ(out[0].param, Param::kRed);
+  EXPECT_EQ(out[0].value, LevelQ15FromByte(100));
+  EXPECT_EQ(out[0].time_us, 100);  // the newest arrival
+  EXPECT_EQ(out[1].param, Param::kTilt);
+  EXPECT_EQ(out[1].value, -(90 << 16));
+  // Changes that do not fit stay for the next call.
+  const uint16_t pan[2] = {0, 0};
+  input.Write(1, 2, pan, 7);
+  EXPECT_EQ(input.Collect(out, 1), 1u);
+  EXPECT_EQ(input.Collect(out, 1), 1u);
+  EXPECT_EQ(input.Collect(out, 1), 0u);
+}
+
+std::vector<uint8_t> Pdu(std::initializer_list<int> bytes) {
+  std::vector<uint8_t> v;
+  for (int b : bytes) v.push_back(static_cast<uint8_t>(b));
+  return v;
+}
+
+TEST(RequestCheck, VerdictsForEachFunction) {
+  const RegisterMap map = MapOf(TwoFixturePatch());
+  const std::vector<uint16_t> regs = RestRegisters(map);
+  const auto check = [&](const std::vector<uint8_t>& pdu) {
+    return CheckPdu(pdu.data(), static_cast<int>(pdu.size()), map, regs.data());
+  };
+  // Reads.
+  EXPECT_EQ(check(Pdu({0x03, 0, 0, 0, 16})).verdict, PduVerdict::kReply);
+  EXPECT_EQ(check(Pdu({0x03, 0, 0, 0, 17})).exception, kExceptionIllegalAddress);
+  EXPECT_EQ(check(Pdu({0x03, 0, 0, 0, 0})).exception, kExceptionIllegalValue);
+  EXPECT_EQ(check(Pdu({0x03, 0, 0, 0, 126})).exception, kExceptionIllegalValue);
+  EXPECT_EQ(check(Pdu({0x04, 0, 0, 0, kStatusRegisterCount})).verdict, PduVerdict::kReply);
+  EXPECT_EQ(check(Pdu({0x04, 0, 15, 0, 2})).exception, kExceptionIllegalAddress);
+  // Writes: value checks, and the values handed on.
+  PduCheck c = check(Pdu({0x06, 0, 3, 0, 200}));
+  EXPECT_EQ(c.verdict, PduVerdict::kReply);
+  EXPECT_EQ(c.write_addr, 3);
+  EXPECT_EQ(c.write_values[0], 200);
+  EXPECT_EQ(check(Pdu({0x06, 0, 3, 1, 0})).exception, kExceptionIllegalValue);  // red 256
+  EXPECT_EQ(check(Pdu({0x06, 0, 99, 0, 0})).exception, kExceptionIllegalAddress);
+  c = check(Pdu({0x10, 0, 0, 0, 3, 6, 0xFF, 0xFF, 0x80, 0x00, 0x40, 0x00}));
+  EXPECT_EQ(c.verdict, PduVerdict::kReply);
+  EXPECT_EQ(c.write_count, 3);
+  EXPECT_EQ(c.write_values[2], 0x4000);
+  EXPECT_EQ(check(Pdu({0x10, 0, 14, 0, 3, 6, 0, 0, 0, 0, 0, 0})).exception, kExceptionIllegalAddress);
+  EXPECT_EQ(check(Pdu({0x10, 0, 2, 0, 2, 4, 0, 0, 1, 0})).exception, kExceptionIllegalValue);  // red 256
+  EXPECT_EQ(check(Pdu({0x10, 0, 0, 0, 2, 6, 0, 0, 0, 0, 0, 0})).exception, kExceptionIllegalValue);  // count != bytes
+  // Mask write: the result is checked. red = (0 AND 0) OR 0x1FF = 511.
+  EXPECT_EQ(check(Pdu({0x16, 0, 3, 0, 0, 0x01, 0xFF})).exception, kExceptionIllegalValue);
+  EXPECT_EQ(check(Pdu({0x16, 0, 3, 0, 0, 0x00, 0xFF})).write_values[0], 0xFF);
+  // Read/write.
+  EXPECT_EQ(check(Pdu({0x17, 0, 0, 0, 2, 0, 1, 0, 1, 2, 0x12, 0x34})).verdict, PduVerdict::kReply);
+  EXPECT_EQ(check(Pdu({0x17, 0, 0, 0, 2, 0, 4, 0, 1, 2, 0x12, 0x34})).exception, kExceptionIllegalValue);
+  // No coils; unknown functions.
+  EXPECT_EQ(check(Pdu({0x01, 0, 0, 0, 1})).exception, kExceptionIllegalAddress);
+  EXPECT_EQ(check(Pdu({0x2B, 0x0E, 1, 0})).exception, kExceptionIllegalFunction);
+  // Lengths that do not match the function: malformed.
+  EXPECT_EQ(check(Pdu({0x03, 0, 0, 0})).verdict, PduVerdict::kMalformed);
+  EXPECT_EQ(check(Pdu({0x06, 0, 0, 0, 1, 9})).verdict, PduVerdict::kMalformed);
+  EXPECT_EQ(check(Pdu({0x10, 0, 0, 0, 1, 200, 0, 0})).verdict, PduVerdict::kMalformed);  // byte count lies
+  EXPECT_EQ(check(Pdu({0x17, 0, 0, 0, 1, 0, 1})).verdict, PduVerdict::kMalformed);
+  EXPECT_EQ(check(Pdu({})).verdict, PduVerdict::kMalformed);
+}
+
+}  // namespace
+}  // namespace relight::hal
