@@ -60,7 +60,7 @@ void BM_Recombine(benchmark::State& state) {
   const std::vector<int16_t> basis = MakeBasis(terms, receivers);
   std::vector<int32_t> k(static_cast<size_t>(terms) * 3);
   for (size_t i = 0; i < k.size(); ++i) k[i] = static_cast<int32_t>(1000003 * (i + 1) % 2000000) - 1000000;
-  std::vector<int64_t> scratch(3 * relight::kRecombineBlockReceivers);
+  std::vector<int64_t> scratch(static_cast<size_t>(state.range(2)));
   std::vector<int32_t> out(static_cast<size_t>(receivers) * 3);
   for (auto _ : state) {
     relight::RecombineQ12(basis.data(), terms, receivers, k.data(), 20, scratch.data(),
@@ -81,7 +81,16 @@ void SizeArgs(benchmark::internal::Benchmark* b) {
   b->Unit(benchmark::kMicrosecond);
 }
 BENCHMARK(BM_StreamRead)->Apply(SizeArgs);
-BENCHMARK(BM_Recombine)->Apply(SizeArgs);
+// Third argument: the scratch length the engine gives the kernel (3 int64 per receiver of a block).
+void ScratchArgs(benchmark::internal::Benchmark* b) {
+  for (int64_t receivers : {16384, 100000}) {
+    for (int64_t terms : {36, 81, 117}) {
+      for (int64_t scratch : {3 * 512, 3 * 2048}) b->Args({receivers, terms, scratch});
+    }
+  }
+  b->Unit(benchmark::kMicrosecond);
+}
+BENCHMARK(BM_Recombine)->Apply(ScratchArgs);
 
 // A synthetic bake: V vertices on a floor, one exact-direct luminaire of degree 8.
 relight::Bake MakeBake(uint32_t vertices, int degree) {

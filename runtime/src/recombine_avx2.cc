@@ -35,6 +35,8 @@ constexpr int kHiOffsets[8] = {4, 5, 6, 7, 12, 13, 14, 15};
 struct PairVectors {
   __m256i lo_kh[3], lo_kl[3], hi_kh[3], hi_kl[3];  // [phase]
 };
+static_assert(sizeof(PairVectors) == sizeof(TermPairVectors), "opaque storage fits");
+static_assert(alignof(PairVectors) <= alignof(TermPairVectors), "opaque storage aligned");
 
 __attribute__((target("avx2"))) PairVectors MakePair(const int32_t* ka, const int32_t* kb) {
   PairVectors v;
@@ -70,25 +72,33 @@ constexpr int kPairsPerWiden = 4;  // 8 terms summed in int32 before widening (<
 
 }  // namespace
 
+__attribute__((target("avx2"))) void BuildTermPairsAvx2(const uint16_t* terms, uint32_t term_count,
+                                                        const int32_t* k, TermPairVectors* pairs) {
+  static const int32_t kZero[3] = {0, 0, 0};
+  for (uint32_t p = 0; 2 * p < term_count; ++p) {
+    const uint32_t ia = 2 * p, ib = ia + 1;
+    // An odd term count pairs the last term with itself times zero.
+    const int32_t* kb = ib < term_count ? k + 3 * terms[ib] : kZero;
+    const PairVectors v = MakePair(k + 3 * terms[ia], kb);
+    __builtin_memcpy(pairs[p].bytes, &v, sizeof v);
+  }
+}
+
 __attribute__((target("avx2"))) void AccumulateTermsAvx2(const int16_t* basis, uint64_t stride,
                                                          const uint16_t* terms, uint32_t term_count,
-                                                         const int32_t* k, uint32_t elements,
-                                                         int64_t* acc_hi, int64_t* acc_lo) {
-  static const int32_t kZero[3] = {0, 0, 0};
+                                                         const int32_t* k, const TermPairVectors* pairs,
+                                                         uint32_t elements, int64_t* acc_hi, int64_t* acc_lo) {
   const uint32_t chunks = elements / 16;
   const uint32_t pair_count = (term_count + 1) / 2;
   for (uint32_t p0 = 0; p0 < pair_count; p0 += kPairsPerWiden) {
     const uint32_t group = pair_count - p0 < kPairsPerWiden ? pair_count - p0 : kPairsPerWiden;
-    PairVectors vec[kPairsPerWiden];
+    const PairVectors* vec = reinterpret_cast<const PairVectors*>(pairs + p0);
     const int16_t* row_a[kPairsPerWiden];
     const int16_t* row_b[kPairsPerWiden];
     for (uint32_t g = 0; g < group; ++g) {
       const uint32_t ia = 2 * (p0 + g), ib = ia + 1;
       const uint16_t ta = terms[ia];
-      // An odd term count pairs the last term with itself times zero.
-      const bool has_b = ib < term_count;
-      const uint16_t tb = has_b ? terms[ib] : ta;
-      vec[g] = MakePair(k + 3 * ta, has_b ? k + 3 * tb : kZero);
+      const uint16_t tb = ib < term_count ? terms[ib] : ta;  // times zero (see BuildTermPairsAvx2)
       row_a[g] = basis + ta * stride;
       row_b[g] = basis + tb * stride;
     }
@@ -125,8 +135,9 @@ __attribute__((target("avx2"))) void AccumulateTermsAvx2(const int16_t* basis, u
 #else  // no AVX2 path on this target: RecombineQ12 stays scalar
 
 bool CpuHasAvx2() { return false; }
-void AccumulateTermsAvx2(const int16_t*, uint64_t, const uint16_t*, uint32_t, const int32_t*, uint32_t,
-                         int64_t*, int64_t*) {}
+void BuildTermPairsAvx2(const uint16_t*, uint32_t, const int32_t*, TermPairVectors*) {}
+void AccumulateTermsAvx2(const int16_t*, uint64_t, const uint16_t*, uint32_t, const int32_t*,
+                         const TermPairVectors*, uint32_t, int64_t*, int64_t*) {}
 
 #endif
 

@@ -16,6 +16,16 @@ inline constexpr int kVectorMultiplierBits = 24;
 // True when the CPU runs AVX2 (checked once).
 bool CpuHasAvx2();
 
+// The multiplier vectors of one term pair, built once per call and reused for
+// every block of receivers (opaque here: AVX2 registers in the .cc).
+struct alignas(32) TermPairVectors {
+  uint8_t bytes[12 * 32];
+};
+inline constexpr uint32_t kMaxTermPairs = (289 + 1) / 2;
+
+// Builds (term_count + 1) / 2 pair vectors for the given terms and multipliers.
+void BuildTermPairsAvx2(const uint16_t* terms, uint32_t term_count, const int32_t* k, TermPairVectors* pairs);
+
 // acc[e] += sum over the given terms of q_t[e] * k[t*3 + e % 3], exactly, for
 // e in [0, elements), where q_t = basis + t * stride (int16 elements). The
 // term list holds indices into the rows/multipliers; |k| < 2^24 for those.
@@ -26,6 +36,7 @@ bool CpuHasAvx2();
 // in int32 (< 2^30) before widening to the int64 accumulators acc_hi/acc_lo,
 // which the caller combines as acc_hi * 2^12 + acc_lo (< 289 * 2^27 * 2^12).
 void AccumulateTermsAvx2(const int16_t* basis, uint64_t stride, const uint16_t* terms, uint32_t term_count,
-                         const int32_t* k, uint32_t elements, int64_t* acc_hi, int64_t* acc_lo);
+                         const int32_t* k, const TermPairVectors* pairs, uint32_t elements, int64_t* acc_hi,
+                         int64_t* acc_lo);
 
 }  // namespace relight
