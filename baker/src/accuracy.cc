@@ -52,6 +52,9 @@ Status ApplySettings(const std::vector<FixtureSetting>& settings, Engine* engine
   for (int i = 0; i < engine->luminaire_count(); ++i) {
     const FixtureSetting& s = settings[i];
     RELIGHT_RETURN_IF_ERROR(engine->SetPanTilt(i, Degrees(s.pan_deg), Degrees(s.tilt_deg)));
+    const Q16_16 roll = s.roll_deg ? Degrees(*s.roll_deg)
+                                   : Q16_16::FromRaw(engine->bake().luminaires[i].roll);
+    RELIGHT_RETURN_IF_ERROR(engine->SetRoll(i, roll));
     RELIGHT_RETURN_IF_ERROR(engine->SetDimmer(i, Level(s.dimmer)));
     RELIGHT_RETURN_IF_ERROR(
         engine->SetColour(i, Level(s.colour[0]), Level(s.colour[1]), Level(s.colour[2])));

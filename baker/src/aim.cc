@@ -4,6 +4,7 @@
 //   standing: axis = (sin t cos p, sin t sin p, +cos t)
 #include <cmath>
 
+#include "relight/baker/fixture_frame.h"
 #include "relight/baker/photometry.h"
 
 namespace relight::baker {
@@ -18,6 +19,9 @@ constexpr double kVerticalTolerance = 1e-9;
 }  // namespace
 
 Vec3 BeamAxis(MountingKind mounting, double pan_deg, double tilt_deg) {
+  if (mounting == MountingKind::kWall) {
+    return MakeFixtureFrame(FixturePose{mounting, 0, pan_deg, tilt_deg, 0}).axis;
+  }
   const double p = pan_deg * kDegToRad, t = tilt_deg * kDegToRad;
   const double vertical = mounting == MountingKind::kHanging ? -std::cos(t) : std::cos(t);
   return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), vertical};
@@ -25,6 +29,10 @@ Vec3 BeamAxis(MountingKind mounting, double pan_deg, double tilt_deg) {
 
 void AimAt(MountingKind mounting, const Vec3& position, const Vec3& target, double* pan_deg,
            double* tilt_deg) {
+  if (mounting == MountingKind::kWall) {
+    AimAtPose(mounting, 0, position, target, pan_deg, tilt_deg);
+    return;
+  }
   const double dx = target[0] - position[0], dy = target[1] - position[1];
   const double dz = target[2] - position[2];
   const double horizontal = std::hypot(dx, dy);

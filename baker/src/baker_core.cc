@@ -1,8 +1,13 @@
 #include "baker_core.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
+#include "hierarchy.h"
+#include "hierarchy_links.h"
+#include "link_brightness.h"
+#include "parallel_for.h"
 #include "relight/sh_index.h"
 
 namespace relight::baker {
@@ -37,6 +42,61 @@ void ValidateForRadiosity(const Scene& scene) {
   }
 }
 
+void BuildDenseSolver(BakerCore* core, Progress* progress) {
+  const Mesh& mesh = core->mesh;
+  const Stopwatch ff_time;
+  core->form_factors = ComputeFormFactors(mesh, *core->visibility, core->samples,
+                                          core->options.threads, progress);
+  core->report.form_factor_seconds += ff_time.seconds();
+  const Stopwatch solve_time;
+  if (progress) progress->Begin("factorising", 1);
+  std::vector<Rgb> rho;
+  rho.reserve(mesh.patch_count());
+  for (const Patch& p : mesh.patches) rho.push_back(p.reflectance);
+  core->solver = std::make_unique<RadiositySolver>(core->form_factors, rho, core->options.threads);
+  if (progress) {
+    progress->Advance();
+    progress->End();
+  }
+  core->report.solve_seconds += solve_time.seconds();
+}
+
+void BuildHierarchicalSolver(BakerCore* core, Progress* progress) {
+  const Mesh& mesh = core->mesh;
+  const BakeOptions& o = core->options;
+  if (!(o.link_epsilon >= 0) || !(o.solve_tolerance > 0)) {
+    throw SceneError(core->scene.path, 0,
+                     "hierarchical solver: link epsilon must be >= 0 and the tolerance > 0");
+  }
+  const Stopwatch ff_time;
+  Hierarchy h = BuildHierarchy(mesh);
+  const std::vector<double> brightness =
+      RefinementBrightness(core->scene, mesh, h, core->direct);
+  // Relative to the area-weighted mean exitance (the roots' brightness):
+  // the brightest patches (next to a luminaire) would make the scale useless.
+  double area = 0, flux = 0;
+  for (size_t s = 0; s < h.surface_count(); ++s) {
+    const HierarchyNode& root = h.nodes[h.root(s)];
+    area += root.area_m2;
+    flux += root.area_m2 * brightness[h.root(s)];
+  }
+  const double epsilon = o.link_epsilon * flux / area;
+  std::vector<HierarchyLink> links =
+      RefineLinks(mesh, *core->visibility, core->samples, h, brightness, epsilon, o.threads,
+                  progress);
+  core->report.nodes = h.nodes.size();
+  core->report.links = links.size();
+  core->report.form_factor_seconds += ff_time.seconds();
+  std::vector<Rgb> rho;
+  rho.reserve(mesh.patch_count());
+  for (const Patch& p : mesh.patches) rho.push_back(p.reflectance);
+  HierarchicalSolveOptions solve;
+  solve.tolerance = o.solve_tolerance;
+  solve.threads = o.threads;
+  core->hierarchical_solver =
+      std::make_unique<HierarchicalSolver>(std::move(h), std::move(links), rho, solve);
+}
+
 }  // namespace
 
 std::unique_ptr<BakerCore> BuildBakerCore(const Scene& scene, const BakeOptions& options,
@@ -46,32 +106,19 @@ std::unique_ptr<BakerCore> BuildBakerCore(const Scene& scene, const BakeOptions&
   auto core = std::make_unique<BakerCore>();
   core->scene = scene;
   core->options = options;
-  core->mesh = BuildMesh(scene);
+  core->mesh = BuildMesh(scene, options.solver == SolverKind::kDense ? kMaxDensePatches
+                                                                     : kMaxHierarchicalPatches);
   const Mesh& mesh = core->mesh;
+  core->solver_kind = options.solver;
+  if (core->solver_kind == SolverKind::kAuto) {
+    core->solver_kind = mesh.patch_count() > kAutoDenseMaxPatches ? SolverKind::kHierarchical
+                                                                   : SolverKind::kDense;
+  }
+  core->report.solver = core->solver_kind;
   core->visibility = std::make_unique<Visibility>(mesh, options.threads);
   core->samples = BuildPatchSampleSets(mesh);
 
-  const Stopwatch ff_time;
-  core->form_factors =
-      ComputeFormFactors(mesh, *core->visibility, core->samples, options.threads, progress);
-  for (const CalcGrid& g : scene.grids) {
-    core->gather.push_back(ComputeGatherFactors(mesh, *core->visibility, core->samples, g.points,
-                                                g.normals, options.threads, progress));
-  }
-  core->report.form_factor_seconds = ff_time.seconds();
-
-  const Stopwatch solve_time;
-  if (progress) progress->Begin("factorising", 1);
-  std::vector<Rgb> rho;
-  rho.reserve(mesh.patch_count());
-  for (const Patch& p : mesh.patches) rho.push_back(p.reflectance);
-  core->solver = std::make_unique<RadiositySolver>(core->form_factors, rho, options.threads);
-  if (progress) {
-    progress->Advance();
-    progress->End();
-  }
-  core->report.solve_seconds = solve_time.seconds();
-
+  // Direct light first: the hierarchical solver refines its links by it.
   if (progress) progress->Begin("direct light", scene.luminaires.size());
   for (const Luminaire& l : scene.luminaires) {
     core->direct.push_back(
@@ -79,6 +126,18 @@ std::unique_ptr<BakerCore> BuildBakerCore(const Scene& scene, const BakeOptions&
     if (progress) progress->Advance();
   }
   if (progress) progress->End();
+
+  if (core->solver_kind == SolverKind::kDense) {
+    BuildDenseSolver(core.get(), progress);
+  } else {
+    BuildHierarchicalSolver(core.get(), progress);
+  }
+  const Stopwatch gather_time;
+  for (const CalcGrid& g : scene.grids) {
+    core->gather.push_back(ComputeGatherFactors(mesh, *core->visibility, core->samples, g.points,
+                                                g.normals, options.threads, progress));
+  }
+  core->report.form_factor_seconds += gather_time.seconds();
 
   BakeReport& r = core->report;
   r.patches = mesh.patch_count();
@@ -88,6 +147,21 @@ std::unique_ptr<BakerCore> BuildBakerCore(const Scene& scene, const BakeOptions&
   r.luminaires = scene.luminaires.size();
   r.total_seconds = total.seconds();
   return core;
+}
+
+std::array<Eigen::MatrixXd, 3> SolveExitanceRgb(const BakerCore& core,
+                                                const Eigen::MatrixXd& illuminance_lux) {
+  if (core.hierarchical_solver) return core.hierarchical_solver->SolveExitanceRgb(illuminance_lux);
+  std::array<Eigen::MatrixXd, 3> m;
+  ParallelFor(3, std::min(2, ResolveThreads(core.options.threads)), [&](size_t c, int) {
+    m[c] = core.solver->SolveExitance(static_cast<int>(c), illuminance_lux);
+  });
+  return m;
+}
+
+const Eigen::VectorXd& Reflectance(const BakerCore& core, int channel) {
+  return core.hierarchical_solver ? core.hierarchical_solver->reflectance(channel)
+                                  : core.solver->reflectance(channel);
 }
 
 Eigen::MatrixXd AverageToVertices(const Mesh& mesh, const Eigen::MatrixXd& per_patch) {

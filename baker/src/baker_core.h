@@ -9,6 +9,7 @@
 
 #include "direct_light.h"
 #include "form_factors.h"
+#include "hierarchy_solve.h"
 #include "mesher.h"
 #include "progress.h"
 #include "radiosity_solve.h"
@@ -23,12 +24,21 @@ struct BakerCore {
   Mesh mesh;
   std::unique_ptr<Visibility> visibility;
   PatchSampleSets samples;
-  Eigen::MatrixXd form_factors;         // patches x patches
+  SolverKind solver_kind = SolverKind::kDense;  // the one in use, never kAuto
+  Eigen::MatrixXd form_factors;         // dense only: patches x patches
   std::vector<Eigen::MatrixXd> gather;  // per grid: points x patches
-  std::unique_ptr<RadiositySolver> solver;
+  std::unique_ptr<RadiositySolver> solver;                 // dense only
+  std::unique_ptr<HierarchicalSolver> hierarchical_solver;  // hierarchical only
   std::vector<LuminaireDirect> direct;  // per luminaire
   BakeReport report;
 };
+
+// Exitance M (lm/m^2) per patch and channel from direct illuminance E (lux),
+// one column per right-hand side, by whichever solver the core built.
+std::array<Eigen::MatrixXd, 3> SolveExitanceRgb(const BakerCore& core,
+                                                const Eigen::MatrixXd& illuminance_lux);
+// Per patch reflectance of a channel.
+const Eigen::VectorXd& Reflectance(const BakerCore& core, int channel);
 
 // Validates what the radiosity stages rely on and builds everything; throws
 // SceneError for bad input. `progress` may be null.

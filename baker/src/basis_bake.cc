@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bake_lid.h"
 #include "baker_core.h"
 #include "luminaire_basis.h"
 #include "quantise.h"
@@ -87,7 +88,6 @@ BakeLuminaire MakeBakeLuminaire(const Luminaire& lum, const LuminaireBasis& basi
   BakeLuminaire out;
   out.name = lum.name;
   PutQ16_16(lum.position, out.position);
-  out.mounting = lum.mounting == MountingKind::kHanging ? Mounting::kHanging : Mounting::kStanding;
   out.direct_mode =
       basis.mode == DirectModeKind::kExact ? DirectMode::kExactDirect : DirectMode::kAllInSh;
   out.sh_degree = static_cast<uint8_t>(basis.degree);
@@ -96,7 +96,7 @@ BakeLuminaire MakeBakeLuminaire(const Luminaire& lum, const LuminaireBasis& basi
   out.default_tilt = ToQ16_16(lum.tilt_deg).raw();
   out.default_dimmer = ToLevelQ1_15(lum.dimmer).raw();
   for (int c = 0; c < 3; ++c) out.default_rgb[c] = ToLevelQ1_15(lum.colour[c]).raw();
-  for (double cd : SampleLid(lum.lid, lid_samples)) out.lid.candela.push_back(ToQ48_16(cd).raw());
+  FillBakeLuminaireLid(lum, basis.degree, lid_samples, &out);  // mounting, frame, LID
   for (const ReceiverBasis& set : basis.sets) out.receivers.push_back(QuantiseReceivers(set));
   return out;
 }
@@ -143,13 +143,17 @@ relight::Bake Baker::Bake() {
 
   const Stopwatch solve_time;
   size_t terms = 0;
-  impl_->progress.Begin("basis luminances", scene.luminaires.size());
+  // Progress in SH terms: a solve's time grows with its terms.
+  size_t all_terms = 0;
+  for (const Luminaire& l : scene.luminaires)
+    all_terms += static_cast<size_t>(ShTermCount(l.sh_degree));
+  impl_->progress.Begin("basis luminances", all_terms);
   for (size_t l = 0; l < scene.luminaires.size(); ++l) {
     const LuminaireBasis basis = ComputeLuminaireBasis(core, l, EffectiveDirectMode(core));
     bake.luminaires.push_back(
         MakeBakeLuminaire(scene.luminaires[l], basis, core.options.lid_samples));
     terms += static_cast<size_t>(ShTermCount(basis.degree));
-    impl_->progress.Advance();
+    impl_->progress.Advance(static_cast<size_t>(ShTermCount(basis.degree)));
   }
   impl_->progress.End();
   impl_->report.solve_seconds += solve_time.seconds();
@@ -173,6 +177,7 @@ relight::Bake Baker::Bake() {
   // A white that rounds to 0 in LightQ12 keeps the format's default.
   if (bake.white_luminance <= 0) bake.white_luminance = relight::Bake().white_luminance;
 
+  if (core.hierarchical_solver) impl_->report.sweeps = core.hierarchical_solver->max_sweeps_used();
   impl_->report.total_seconds += total.seconds();
   return bake;
 }
@@ -180,6 +185,8 @@ relight::Bake Baker::Bake() {
 ReferenceResult Baker::Reference(const std::vector<FixtureSetting>& settings) {
   const Stopwatch time;
   ReferenceResult out = ComputeReference(*impl_->core, settings);
+  if (impl_->core->hierarchical_solver)
+    impl_->report.sweeps = impl_->core->hierarchical_solver->max_sweeps_used();
   impl_->report.solve_seconds += time.seconds();
   impl_->report.total_seconds += time.seconds();
   return out;

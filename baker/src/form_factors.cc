@@ -118,6 +118,24 @@ bool IsNearPair(const Patch& a, const Patch& b) {
   return Length(a.centre - b.centre) < 2.0 * std::max(a.diameter_m, b.diameter_m);
 }
 
+bool PatchPairFormFactors(const Mesh& mesh, const Visibility& vis, const PatchSampleSets& samples,
+                          size_t i, size_t j, double* f_ij, double* f_ji) {
+  *f_ij = *f_ji = 0;
+  const Patch& pi = mesh.patches[i];
+  const Patch& pj = mesh.patches[j];
+  if (Behind(mesh, pi, pj) || Behind(mesh, pj, pi)) return false;
+  const bool near = IsNearPair(pi, pj);
+  const auto& si = near ? samples.fine[i] : samples.coarse[i];
+  const auto& sj = near ? samples.fine[j] : samples.coarse[j];
+  const double fij = PatchToPatchUnoccluded(mesh, pi, si, pj);
+  const double fji = PatchToPatchUnoccluded(mesh, pj, sj, pi);
+  if (fij <= 0 && fji <= 0) return false;
+  const double v = VisibleFraction(vis, pi, si, pj, sj);
+  *f_ij = fij * v;
+  *f_ji = fji * v;
+  return true;
+}
+
 Eigen::MatrixXd ComputeFormFactors(const Mesh& mesh, const Visibility& vis,
                                    const PatchSampleSets& samples, int threads,
                                    Progress* progress) {
@@ -128,21 +146,13 @@ Eigen::MatrixXd ComputeFormFactors(const Mesh& mesh, const Visibility& vis,
   // Each unordered pair once: both directions share the visibility rays,
   // and each pair writes only its own two entries, so rows need no locks.
   ParallelFor(n, threads, [&](size_t i, int) {
-    const Patch& pi = mesh.patches[i];
     for (size_t j = i + 1; j < n; ++j) {
-      const Patch& pj = mesh.patches[j];
-      if (Behind(mesh, pi, pj) || Behind(mesh, pj, pi)) continue;
-      const bool near = IsNearPair(pi, pj);
-      const auto& si = near ? samples.fine[i] : samples.coarse[i];
-      const auto& sj = near ? samples.fine[j] : samples.coarse[j];
-      const double fij = PatchToPatchUnoccluded(mesh, pi, si, pj);
-      const double fji = PatchToPatchUnoccluded(mesh, pj, sj, pi);
-      if (fij <= 0 && fji <= 0) continue;
-      const double v = VisibleFraction(vis, pi, si, pj, sj);
+      double fij, fji;
+      if (!PatchPairFormFactors(mesh, vis, samples, i, j, &fij, &fji)) continue;
       const auto ei = static_cast<Eigen::Index>(i);
       const auto ej = static_cast<Eigen::Index>(j);
-      f(ei, ej) = fij * v;
-      f(ej, ei) = fji * v;
+      f(ei, ej) = fij;
+      f(ej, ei) = fji;
     }
     if (progress) progress->Advance(n - 1 - i);
   });

@@ -32,6 +32,12 @@ PatchSampleSets BuildPatchSampleSets(const Mesh& mesh);
 // True when patches closer than this (centre distance) need the fine samples.
 bool IsNearPair(const Patch& a, const Patch& b);
 
+// F(i, j) and F(j, i) of one patch pair, with visibility: exactly the dense
+// matrix's entries (the hierarchical solver's leaf-to-leaf links use it).
+// False, with both 0, when the patches cannot see each other.
+bool PatchPairFormFactors(const Mesh& mesh, const Visibility& vis, const PatchSampleSets& samples,
+                          size_t i, size_t j, double* f_ij, double* f_ji);
+
 // F(i, j): fraction of the light leaving patch i that reaches patch j. Dense
 // n x n; rows of a closed, empty enclosure sum to 1. Rows run on `threads`
 // (0 = every core).

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "relight/baker/photometric_file.h"
 #include "relight/baker/scene.h"
 
 namespace relight::baker {
@@ -27,7 +28,7 @@ double Lid::Evaluate(double gamma_in_deg) const {
     }
     case LidKind::kTable: {
       const size_t n = std::min(gamma_deg.size(), candela.size());
-      if (n == 0 || g_deg > gamma_deg[n - 1]) return 0.0;
+      if (n == 0 || g_deg > gamma_deg[n - 1] || g_deg < gamma_deg[0]) return 0.0;
       // First control point strictly above g; linear between it and the one before.
       const size_t hi = static_cast<size_t>(
           std::upper_bound(gamma_deg.begin(), gamma_deg.begin() + static_cast<std::ptrdiff_t>(n),
@@ -38,8 +39,21 @@ double Lid::Evaluate(double gamma_in_deg) const {
       const double t = (g_deg - gamma_deg[hi - 1]) / (gamma_deg[hi] - gamma_deg[hi - 1]);
       return candela[hi - 1] + t * (candela[hi] - candela[hi - 1]);
     }
+    case LidKind::kCGamma: {
+      if (!file) return 0.0;
+      // Mean over C, 1 degree steps: the file's planes are linear in C
+      // between at most a few degrees' worth of detail per step.
+      double sum = 0;
+      for (int c = 0; c < 360; ++c) sum += file->Evaluate(c + 0.5, g_deg);
+      return sum / 360.0;
+    }
   }
   return 0.0;
+}
+
+double Lid::Evaluate(double c_deg, double gamma_in_deg) const {
+  if (kind == LidKind::kCGamma) return file ? file->Evaluate(c_deg, gamma_in_deg) : 0.0;
+  return Evaluate(gamma_in_deg);
 }
 
 }  // namespace relight::baker

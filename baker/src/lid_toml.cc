@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <string>
 
+#include "relight/baker/photometric_file.h"
+
 namespace relight::baker {
 
 namespace {
@@ -37,6 +39,20 @@ void ReadTable(const TomlFields& f, Lid* lid) {
   if (!(lid->peak_cd > 0.0)) f.Fail(f.Required("candela"), "candela must not all be 0");
 }
 
+// A photometric file (.ies / .ldt), relative to the scene file's folder.
+// One C plane: an axisymmetric table; otherwise the full (C, gamma) table.
+void ReadFile(const TomlFields& f, Lid* lid) {
+  const std::string rel = f.String("path");
+  const size_t slash = f.file().find_last_of('/');
+  const std::string folder = slash == std::string::npos ? "" : f.file().substr(0, slash + 1);
+  const std::string path = !rel.empty() && rel[0] == '/' ? rel : folder + rel;
+  try {
+    *lid = LoadLid(path);
+  } catch (const SceneError& e) {
+    f.Fail(f.Required("path"), std::string("cannot use the photometric file: ") + e.what());
+  }
+}
+
 }  // namespace
 
 Lid ReadLid(const TomlFields& f) {
@@ -56,9 +72,12 @@ Lid ReadLid(const TomlFields& f) {
     f.CheckKeys({"type", "gamma", "candela"});
     lid.kind = LidKind::kTable;
     ReadTable(f, &lid);
+  } else if (type == "file") {
+    f.CheckKeys({"type", "path"});
+    ReadFile(f, &lid);
   } else {
-    f.Fail(f.Required("type"),
-           "type must be \"isotropic\", \"cos\" or \"table\", got " + Describe(f.Required("type")));
+    f.Fail(f.Required("type"), "type must be \"isotropic\", \"cos\", \"table\" or \"file\", got " +
+                                   Describe(f.Required("type")));
   }
   return lid;
 }

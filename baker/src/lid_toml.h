@@ -2,6 +2,7 @@
 //   { type = "isotropic", peak_cd }
 //   { type = "cos", exponent, spread, peak_cd }        (Dobashi Eq. 11)
 //   { type = "table", gamma = [0, ...], candela = [...] }
+//   { type = "file", path = "luminaire.ies" }        (IES LM-63 or EULUMDAT .ldt)
 #pragma once
 
 #include "relight/baker/scene.h"

@@ -58,14 +58,12 @@ LuminaireBasis ComputeLuminaireBasis(const BakerCore& core, size_t luminaire, Di
 
   // All (N+1)^2 terms as right-hand sides of one factorised system (Eq. 17).
   const Eigen::MatrixXd e = PatchTerms(direct, lum.sh_degree);
-  std::array<Eigen::MatrixXd, 3> m;
-  ParallelFor(3, std::min(2, ResolveThreads(core.options.threads)),
-              [&](size_t c, int) { m[c] = core.solver->SolveExitance(static_cast<int>(c), e); });
+  const std::array<Eigen::MatrixXd, 3> m = SolveExitanceRgb(core, e);
 
   ReceiverBasis& vertices = out.sets[0];
   for (int c = 0; c < 3; ++c) {
     const Eigen::MatrixXd luminance =
-        exact ? Eigen::MatrixXd((m[c] - core.solver->reflectance(c).asDiagonal() * e) / kPi)
+        exact ? Eigen::MatrixXd((m[c] - Reflectance(core, c).asDiagonal() * e) / kPi)
               : Eigen::MatrixXd(m[c] / kPi);
     vertices.basis[c] = AverageToVertices(core.mesh, luminance);
   }

@@ -12,10 +12,6 @@ namespace {
 
 using namespace radiosity_vec;
 
-// Dense form factors cost 8 n^2 bytes, and the three LU factors as much
-// again each: beyond this the bake would not fit in memory.
-constexpr size_t kMaxPatches = 20000;
-
 // Newell's method: robust for any planar polygon, length = 2 x area.
 Vec3 NewellNormal(const std::vector<Vec3>& c) {
   Vec3 n{0, 0, 0};
@@ -29,7 +25,8 @@ int Divisions(double length_m, double patch_size_m) {
 
 class MeshBuilder {
  public:
-  MeshBuilder(const Scene& scene, Mesh* mesh) : scene_(scene), mesh_(mesh) {}
+  MeshBuilder(const Scene& scene, size_t max_patches, Mesh* mesh)
+      : scene_(scene), max_patches_(max_patches), mesh_(mesh) {}
 
   void AddSurface(uint32_t index) {
     const Surface& s = scene_.surfaces[index];
@@ -111,6 +108,8 @@ class MeshBuilder {
     const int nv = Divisions(std::max(Length(c[3] - c[0]), Length(c[2] - c[1])), ps);
     CheckBudget(static_cast<size_t>(nu) * static_cast<size_t>(nv));
     const uint32_t base = static_cast<uint32_t>(mesh_->positions.size());
+    mesh_->surface_grids.push_back(
+        {static_cast<uint32_t>(mesh_->patches.size()), base, nu, nv, false});
     for (int b = 0; b <= nv; ++b) {
       const double v = static_cast<double>(b) / nv;
       for (int a = 0; a <= nu; ++a) {
@@ -135,6 +134,8 @@ class MeshBuilder {
     const int k = Divisions(longest, scene_.patch_size_m);
     CheckBudget(static_cast<size_t>(k) * static_cast<size_t>(k));
     const uint32_t base = static_cast<uint32_t>(mesh_->positions.size());
+    mesh_->surface_grids.push_back(
+        {static_cast<uint32_t>(mesh_->patches.size()), base, k, k, true});
     std::vector<uint32_t> row_start(static_cast<size_t>(k) + 1);
     uint32_t next = base;
     for (int j = 0; j <= k; ++j) {
@@ -159,16 +160,20 @@ class MeshBuilder {
   }
 
   void CheckBudget(size_t more) {
-    if (mesh_->patches.size() + more > kMaxPatches) {
+    if (mesh_->patches.size() + more > max_patches_) {
+      const bool dense = max_patches_ <= kMaxDensePatches;
       throw SceneError(scene_.path, 0,
                        "patch_size " + std::to_string(scene_.patch_size_m) + " m gives more than " +
-                           std::to_string(kMaxPatches) +
-                           " patches (dense form factors would not fit in memory); "
-                           "raise patch_size");
+                           std::to_string(max_patches_) + " patches" +
+                           (dense ? " (dense form factors would not fit in memory; the "
+                                    "hierarchical solver has no such limit)"
+                                  : "") +
+                           "; raise patch_size");
     }
   }
 
   const Scene& scene_;
+  size_t max_patches_;
   Mesh* mesh_;
   Vec3 normal_{};
   Rgb rho_{};
@@ -192,13 +197,13 @@ void BuildVertexAdjacency(Mesh* mesh) {
 
 }  // namespace
 
-Mesh BuildMesh(const Scene& scene) {
+Mesh BuildMesh(const Scene& scene, size_t max_patches) {
   if (!(scene.patch_size_m > 0) || !std::isfinite(scene.patch_size_m)) {
     throw SceneError(scene.path, 0, "patch_size must be a positive length in metres");
   }
   if (scene.surfaces.empty()) throw SceneError(scene.path, 0, "the scene has no surfaces");
   Mesh mesh;
-  MeshBuilder builder(scene, &mesh);
+  MeshBuilder builder(scene, max_patches, &mesh);
   for (uint32_t s = 0; s < scene.surfaces.size(); ++s) builder.AddSurface(s);
   BuildVertexAdjacency(&mesh);
   Vec3 lo{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "radiosity_vec.h"
+#include "relight/baker/fixture_frame.h"
 #include "relight/baker/photometry.h"
 
 namespace relight::baker {
@@ -17,7 +18,8 @@ constexpr double kPi = 3.14159265358979323846;
 
 // Illuminance (lux) of every luminaire at each point, one column per luminaire.
 Eigen::MatrixXd PointIlluminance(const std::vector<const std::vector<DirectGeometry>*>& per_lum,
-                                 const std::vector<const Lid*>& lids, const std::vector<Vec3>& axes,
+                                 const std::vector<const Lid*>& lids,
+                                 const std::vector<FixtureFrame>& frames,
                                  size_t count) {
   Eigen::MatrixXd e = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(count),
                                             static_cast<Eigen::Index>(lids.size()));
@@ -26,7 +28,7 @@ Eigen::MatrixXd PointIlluminance(const std::vector<const std::vector<DirectGeome
       const DirectGeometry& d = (*per_lum[l])[k];
       if (d.g_m2 > 0) {
         e(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(l)) =
-            d.g_m2 * ExactIntensity(*lids[l], axes[l], d.direction);
+            d.g_m2 * ExactIntensity(*lids[l], frames[l], d.direction);
       }
     }
   }
@@ -47,6 +49,16 @@ double ExactIntensity(const Lid& lid, const Vec3& axis, const Vec3& dir) {
   return lid.Evaluate(std::acos(cos_gamma) * (180.0 / kPi));
 }
 
+double ExactIntensity(const Lid& lid, const FixtureFrame& frame, const Vec3& dir) {
+  if (lid.axisymmetric()) return ExactIntensity(lid, frame.axis, dir);
+  return FrameIntensity(lid, frame, dir);
+}
+
+FixtureFrame SettingFrame(const Luminaire& lum, const FixtureSetting& setting) {
+  return MakeFixtureFrame(FixturePose{lum.mounting, lum.yaw_deg, setting.pan_deg, setting.tilt_deg,
+                                      setting.roll_deg.value_or(lum.roll_deg)});
+}
+
 ReferenceResult ComputeReference(const BakerCore& core,
                                  const std::vector<FixtureSetting>& settings) {
   const Scene& scene = core.scene;
@@ -57,16 +69,16 @@ ReferenceResult ComputeReference(const BakerCore& core,
   }
   const size_t lums = scene.luminaires.size();
   const auto n = static_cast<Eigen::Index>(mesh.patch_count());
-  std::vector<Vec3> axes;
+  std::vector<FixtureFrame> frames;
   std::vector<const Lid*> lids;
   Eigen::MatrixXd e(n, static_cast<Eigen::Index>(lums));
   for (size_t l = 0; l < lums; ++l) {
     const Luminaire& lum = scene.luminaires[l];
-    axes.push_back(BeamAxis(lum.mounting, settings[l].pan_deg, settings[l].tilt_deg));
+    frames.push_back(SettingFrame(lum, settings[l]));
     lids.push_back(&lum.lid);
-    const Vec3 axis = axes.back();
+    const FixtureFrame frame = frames.back();
     e.col(static_cast<Eigen::Index>(l)) = PatchIlluminance(
-        core.direct[l], [&](const Vec3& dir) { return ExactIntensity(lum.lid, axis, dir); });
+        core.direct[l], [&](const Vec3& dir) { return ExactIntensity(lum.lid, frame, dir); });
   }
   // Per channel, each luminaire's white-light result times dimmer x colour.
   std::array<Eigen::VectorXd, 3> level;
@@ -78,7 +90,7 @@ ReferenceResult ComputeReference(const BakerCore& core,
 
   std::vector<const std::vector<DirectGeometry>*> vertex_direct;
   for (size_t l = 0; l < lums; ++l) vertex_direct.push_back(&core.direct[l].vertices);
-  const Eigen::MatrixXd e_vertex = PointIlluminance(vertex_direct, lids, axes, mesh.vertex_count());
+  const Eigen::MatrixXd e_vertex = PointIlluminance(vertex_direct, lids, frames, mesh.vertex_count());
 
   ReferenceResult out;
   std::array<Eigen::VectorXd, 3> split, patch_average;
@@ -88,11 +100,12 @@ ReferenceResult ComputeReference(const BakerCore& core,
   for (size_t g = 0; g < scene.grids.size(); ++g) {
     std::vector<const std::vector<DirectGeometry>*> per_lum;
     for (size_t l = 0; l < lums; ++l) per_lum.push_back(&core.direct[l].grids[g]);
-    e_grid.push_back(PointIlluminance(per_lum, lids, axes, scene.grids[g].points.size()));
+    e_grid.push_back(PointIlluminance(per_lum, lids, frames, scene.grids[g].points.size()));
   }
+  const std::array<Eigen::MatrixXd, 3> m_rgb = SolveExitanceRgb(core, e);  // lm/m^2 per luminaire
   for (int c = 0; c < 3; ++c) {
-    const Eigen::VectorXd& rho = core.solver->reflectance(c);
-    const Eigen::MatrixXd m = core.solver->SolveExitance(c, e);  // lm/m^2 per luminaire
+    const Eigen::VectorXd& rho = Reflectance(core, c);
+    const Eigen::MatrixXd& m = m_rgb[c];
     const Eigen::VectorXd m_sum = m * level[c];
     const Eigen::VectorXd indirect_patch = (m_sum - rho.asDiagonal() * (e * level[c])) / kPi;
     Eigen::VectorXd vertex_rho(static_cast<Eigen::Index>(mesh.vertex_count()));

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "baker_core.h"
+#include "relight/baker/fixture_frame.h"
 
 namespace relight::baker {
 
@@ -14,7 +15,12 @@ namespace relight::baker {
 ReferenceResult ComputeReference(const BakerCore& core,
                                  const std::vector<FixtureSetting>& settings);
 
-// Exact intensity (cd) of a luminaire aimed along `axis` in direction `dir`.
+// Exact intensity (cd) of a luminaire aimed along `axis` in direction `dir`
+// (an axisymmetric LID; a (C, gamma) one takes its C-average).
 double ExactIntensity(const Lid& lid, const Vec3& axis, const Vec3& dir);
+// Exact intensity of any LID for a fixture in `frame` (bake.h's convention).
+double ExactIntensity(const Lid& lid, const FixtureFrame& frame, const Vec3& dir);
+// The frame of `lum` at `setting` (the scene's yaw; the setting's roll, or the scene's).
+FixtureFrame SettingFrame(const Luminaire& lum, const FixtureSetting& setting);
 
 }  // namespace relight::baker

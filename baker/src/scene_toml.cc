@@ -13,6 +13,7 @@
 #include "lid_toml.h"
 #include "obj_loader.h"
 #include "polygon_check.h"
+#include "relight/baker/fixture_frame.h"
 #include "relight/baker/photometry.h"
 #include "relight/baker/scene.h"
 #include "scene_geometry.h"
@@ -330,7 +331,7 @@ class SceneReader {
     TomlFields f(table, path_, "luminaire");
     f.NameFrom("name", "luminaire");
     f.CheckKeys({"name", "position", "mounting", "pan", "tilt", "aim_at", "dimmer", "colour",
-                 "sh_degree", "sigma", "lid"});
+                 "sh_degree", "sigma", "lid", "yaw", "roll", "pan_range", "tilt_range"});
     Luminaire lum;
     lum.line = f.line();
     lum.name = f.Identifier("name");
@@ -346,10 +347,16 @@ class SceneReader {
       lum.mounting = MountingKind::kHanging;
     } else if (mounting == "standing") {
       lum.mounting = MountingKind::kStanding;
+    } else if (mounting == "wall") {
+      lum.mounting = MountingKind::kWall;
     } else {
-      f.Fail(f.Required("mounting"), "mounting must be \"hanging\" or \"standing\", got " +
+      f.Fail(f.Required("mounting"), "mounting must be \"hanging\", \"standing\" or \"wall\", got " +
                                          Describe(f.Required("mounting")));
     }
+    lum.yaw_deg = f.Number("yaw", Closed(-360, 360), 0.0);
+    lum.roll_deg = f.Number("roll", Closed(-360, 360), 0.0);
+    lum.pan_range_deg = f.Number("pan_range", OpenClosed(0, 720), 540.0);
+    lum.tilt_range_deg = f.Number("tilt_range", OpenClosed(0, 360), 270.0);
     if (f.Has("aim_at")) {
       if (f.Has("pan") || f.Has("tilt")) {
         f.Fail(f.Required("aim_at"), "give either aim_at or pan/tilt, not both");
@@ -358,7 +365,7 @@ class SceneReader {
       if (Length(Sub(target, lum.position)) < kMinVectorM) {
         f.Fail(f.Required("aim_at"), "aim_at must differ from position");
       }
-      AimAt(lum.mounting, lum.position, target, &lum.pan_deg, &lum.tilt_deg);
+      AimAtPose(lum.mounting, lum.yaw_deg, lum.position, target, &lum.pan_deg, &lum.tilt_deg);
     } else {
       lum.pan_deg = f.Number("pan", Closed(-360, 360), 0.0);
       lum.tilt_deg = f.Number("tilt", Closed(-180, 180), 0.0);

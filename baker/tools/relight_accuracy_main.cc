@@ -13,6 +13,7 @@
 #include "relight/bake.h"
 #include "relight/baker/accuracy.h"
 #include "relight/baker/baker.h"
+#include "relight/baker/lid_error.h"
 #include "relight/baker/scene.h"
 #include "relight/engine.h"
 
@@ -42,9 +43,12 @@ std::vector<Case> StandardCases(const std::vector<FixtureSetting>& defaults) {
   return cases;
 }
 
-int Run(const std::string& scene_path, relight::baker::DirectModeKind mode, const std::string& tmp_dir) {
+int Run(const std::string& scene_path, relight::baker::DirectModeKind mode, const std::string& tmp_dir,
+        double lid_error) {
   using Clock = std::chrono::steady_clock;
-  const relight::baker::Scene scene = relight::baker::LoadScene(scene_path);
+  relight::baker::Scene scene = relight::baker::LoadScene(scene_path);
+  std::vector<relight::baker::LuminaireDegree> degrees;
+  if (lid_error > 0) degrees = relight::baker::ApplyLidErrorTarget(&scene, lid_error, mode);
   relight::baker::BakeOptions options;
   options.direct_mode = mode;
   const auto t0 = Clock::now();
@@ -68,6 +72,16 @@ int Run(const std::string& scene_path, relight::baker::DirectModeKind mode, cons
   std::printf("%zu patches, %zu vertices, %zu grid points, %zu SH terms; bake %.1f s\n\n",
               baker.report().patches, baker.report().vertices, baker.report().grid_points,
               baker.report().sh_terms, bake_s);
+  if (!degrees.empty()) {
+    std::printf("SH degrees from --lid-error %.3g%%:\n\n", 100 * lid_error);
+    std::printf("| luminaire | measure | window | degree | LID error |\n| --- | --- | --- | ---: | ---: |\n");
+    for (const auto& d : degrees) {
+      std::printf("| %s | %s | %s | %d | %.2f%%%s |\n", d.name.c_str(),
+                  relight::baker::LidErrorMeasureName(d.measure), relight::baker::ShWindowName(d.window),
+                  d.choice.degree, 100 * d.choice.error, d.choice.met ? "" : " (target not met at 16)");
+    }
+    std::printf("\n");
+  }
   std::printf("| aim | vertex peak cd/m² | vertex max err | vertex mean err | grid peak lux | grid max err | grid mean err |\n");
   std::printf("| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
   for (const Case& c : StandardCases(baker.DefaultSettings())) {
@@ -89,16 +103,20 @@ int main(int argc, char** argv) {
       "Errors are |engine - reference| / peak of the reference, over vertices x RGB (luminance, cd/m^2)\n"
       "and over calculation-grid points x RGB (illuminance, lux)."};
   std::string scene_path, direct = "both", tmp_dir = "/tmp";
+  double lid_error_percent = 0;
   app.add_option("scene", scene_path, "scene file (.toml)")->required();
   app.add_option("--direct", direct, "exact | sh | both")->check(CLI::IsMember({"exact", "sh", "both"}))->capture_default_str();
   app.add_option("--tmp", tmp_dir, "folder for the temporary bake file")->capture_default_str();
+  app.add_option("--lid-error", lid_error_percent,
+                 "choose each luminaire's SH degree for this LID error target, percent (as relight-bake)")
+      ->check(CLI::Range(0.0, 100.0));
   CLI11_PARSE(app, argc, argv);
   try {
     if (direct != "sh") {
-      if (int rc = Run(scene_path, relight::baker::DirectModeKind::kExact, tmp_dir); rc != 0) return rc;
+      if (int rc = Run(scene_path, relight::baker::DirectModeKind::kExact, tmp_dir, lid_error_percent / 100); rc != 0) return rc;
     }
     if (direct != "exact") {
-      if (int rc = Run(scene_path, relight::baker::DirectModeKind::kAllInSh, tmp_dir); rc != 0) return rc;
+      if (int rc = Run(scene_path, relight::baker::DirectModeKind::kAllInSh, tmp_dir, lid_error_percent / 100); rc != 0) return rc;
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "relight-accuracy: error: %s\n", e.what());

@@ -7,6 +7,7 @@
 // Reads top to bottom: parse the command line, load the scene, build the
 // baker (mesh, rays, form factors, factorisation), then bake and write or
 // solve the reference and write CSV, then print a summary.
+#include <sys/resource.h>
 #include <sys/stat.h>
 
 #include <cerrno>
@@ -20,6 +21,7 @@
 
 #include "relight/bake.h"
 #include "relight/baker/baker.h"
+#include "relight/baker/lid_error.h"
 #include "relight/baker/scene.h"
 #include "mesher.h"
 #include "set_args.h"
@@ -62,7 +64,11 @@ struct Args {
   std::string out_path;
   std::string direct;  // empty: the scene's mode (exact)
   int threads = 0;
+  std::string solver = "auto";
+  double patch_size_m = 0;  // 0: the scene's
+  double link_epsilon = relight::baker::BakeOptions().link_epsilon;
   int lid_samples = 720;
+  double lid_error_percent = 0;  // > 0: choose each luminaire's SH degree for this target
   bool quiet = false;
   bool reference = false;
   std::vector<std::string> sets;
@@ -170,14 +176,30 @@ double FileMegabytes(const std::string& path) {
   return stat(path.c_str(), &st) == 0 ? static_cast<double>(st.st_size) / (1024.0 * 1024.0) : 0;
 }
 
+// Peak resident memory of this process so far, MB (Linux reports kB).
+double PeakMegabytes() {
+  struct rusage usage {};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+std::string SolverSummary(const relight::baker::BakeReport& r) {
+  if (r.solver != relight::baker::SolverKind::kHierarchical) return "dense solver";
+  char text[160];
+  std::snprintf(text, sizeof text, "hierarchical solver (%zu nodes, %zu links, %d sweeps)", r.nodes,
+                r.links, r.sweeps);
+  return text;
+}
+
 void PrintSummary(const Scene& scene, const relight::baker::BakeReport& r,
                   const std::string& wrote) {
   std::printf(
       "relight-bake: %s: %zu patches, %zu vertices, %zu triangles, %zu grid points, "
-      "%zu luminaire%s; form factors %.2f s, solve %.2f s, total %.2f s; %s\n",
+      "%zu luminaire%s; %s; form factors %.2f s, solve %.2f s, total %.2f s, peak memory "
+      "%.0f MB; %s\n",
       scene.name.c_str(), r.patches, r.vertices, r.triangles, r.grid_points, r.luminaires,
-      r.luminaires == 1 ? "" : "s", r.form_factor_seconds, r.solve_seconds, r.total_seconds,
-      wrote.c_str());
+      r.luminaires == 1 ? "" : "s", SolverSummary(r).c_str(), r.form_factor_seconds,
+      r.solve_seconds, r.total_seconds, PeakMegabytes(), wrote.c_str());
 }
 
 int Run(const Args& args) {
@@ -185,13 +207,27 @@ int Run(const Args& args) {
     return Fail("--set applies to --reference only (a bake takes the scene's defaults)",
                 kExitBadInput);
   }
-  const Scene scene = relight::baker::LoadScene(args.scene_path);
+  Scene scene = relight::baker::LoadScene(args.scene_path);
+  if (args.patch_size_m > 0) scene.patch_size_m = args.patch_size_m;
   relight::baker::BakeOptions options;
   if (args.direct == "sh") options.direct_mode = relight::baker::DirectModeKind::kAllInSh;
   if (args.direct == "exact") options.direct_mode = relight::baker::DirectModeKind::kExact;
   options.threads = args.threads;
+  if (args.solver == "dense") options.solver = relight::baker::SolverKind::kDense;
+  if (args.solver == "hierarchical") options.solver = relight::baker::SolverKind::kHierarchical;
+  options.link_epsilon = args.link_epsilon;
   options.lid_samples = args.lid_samples;
   options.progress = !args.quiet;
+  if (args.lid_error_percent > 0) {
+    const auto mode = options.direct_mode.value_or(relight::baker::DirectModeKind::kExact);
+    for (const auto& d : relight::baker::ApplyLidErrorTarget(&scene, args.lid_error_percent / 100, mode)) {
+      std::printf("relight-bake: %s: SH degree %d (was %d), %s LID error %.2f%% (window %s)%s\n",
+                  d.name.c_str(), d.choice.degree, d.old_degree,
+                  relight::baker::LidErrorMeasureName(d.measure), 100 * d.choice.error,
+                  relight::baker::ShWindowName(d.window),
+                  d.choice.met ? "" : ": the target is not met even at degree 16");
+    }
+  }
 
   if (!args.reference) {
     Baker baker(scene, options);
@@ -218,7 +254,8 @@ int Run(const Args& args) {
   const std::string vertices_path = prefix + "-vertices.csv";
   const std::string grids_path = prefix + "-grids.csv";
   // The mesher is deterministic: this is the mesh the reference was solved on.
-  const relight::baker::Mesh mesh = relight::baker::BuildMesh(scene);
+  const relight::baker::Mesh mesh =
+      relight::baker::BuildMesh(scene, relight::baker::kMaxHierarchicalPatches);
   if (!WriteFileAtomic(vertices_path, VerticesCsv(mesh, ref), &error) ||
       !WriteFileAtomic(grids_path, GridsCsv(scene, ref), &error)) {
     return Fail(error, kExitIo);
@@ -247,6 +284,20 @@ int main(int argc, char** argv) {
                  "exact (default): direct light exact at run time, SH holds the indirect; "
                  "sh: everything in SH (Dobashi's original)")
       ->check(CLI::IsMember({"exact", "sh"}));
+  app.add_option("--solver", args.solver,
+                 "radiosity solver: dense (every patch pair, LU; up to 20000 patches), "
+                 "hierarchical (quadtrees and links, near-linear) or auto (dense up to 4000 "
+                 "patches)")
+      ->check(CLI::IsMember({"auto", "dense", "hierarchical"}))
+      ->capture_default_str();
+  app.add_option("--patch-size", args.patch_size_m,
+                 "patch edge length in metres, instead of the scene's patch_size")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--link-epsilon", args.link_epsilon,
+                 "hierarchical: split a link while F x source exitance exceeds this fraction "
+                 "of the brightest exitance (0 = every patch pair)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   app.add_option("--threads", args.threads, "worker threads (0 = all cores)")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
@@ -254,6 +305,11 @@ int main(int argc, char** argv) {
                  "M: the stored LID has M+1 samples over 0..180 degrees")
       ->check(CLI::Range(2, 1 << 20))
       ->capture_default_str();
+  app.add_option("--lid-error", args.lid_error_percent,
+                 "choose each luminaire's SH degree (instead of its sh_degree) as the smallest whose "
+                 "series meets this LID error, percent: the flux misplaced at 10-degree resolution "
+                 "(--direct exact) or the relative L2 error (--direct sh); docs/photometry.md")
+      ->check(CLI::Range(0.001, 100.0));
   app.add_flag("-q,--quiet", args.quiet, "no progress bar and no summary");
   app.add_flag("--reference", args.reference,
                "solve with the exact distributions and write CSV instead of a bake");

@@ -204,8 +204,8 @@ std::string CheckLuminaire(const BakeLuminaire& lum) {
   std::string e = CheckName(lum.name, /*allow_empty=*/false);
   if (!e.empty()) return e;
   const auto mounting = static_cast<unsigned>(lum.mounting);
-  if (mounting > static_cast<unsigned>(Mounting::kStanding)) {
-    return StrFormat("mounting %u is not 0 (hanging) or 1 (standing)", mounting);
+  if (mounting > static_cast<unsigned>(Mounting::kWall)) {
+    return StrFormat("mounting %u is not 0 (hanging), 1 (standing) or 2 (wall)", mounting);
   }
   const auto mode = static_cast<unsigned>(lum.direct_mode);
   if (mode > static_cast<unsigned>(DirectMode::kAllInSh)) {
@@ -228,6 +228,78 @@ std::string CheckLuminaire(const BakeLuminaire& lum) {
     if (cd < 0 || cd > kMaxCandelaRaw) {
       return StrFormat("LID sample %llu: %lld (Q48.16 cd) is outside [0, 2^31 cd]",
                        static_cast<ull>(k), static_cast<long long>(cd));
+    }
+  }
+  if (lum.yaw < -kMaxTurnRaw || lum.yaw > kMaxTurnRaw) {
+    return StrFormat("yaw %d (Q16.16 degrees) is outside [-360, 360]", lum.yaw);
+  }
+  if (lum.roll < -kMaxTurnRaw || lum.roll > kMaxTurnRaw) {
+    return StrFormat("roll %d (Q16.16 degrees) is outside [-360, 360]", lum.roll);
+  }
+  if (lum.pan_range <= 0 || lum.pan_range > kMaxPanRangeRaw) {
+    return StrFormat("pan range %d (Q16.16 degrees) is outside (0, 720]", lum.pan_range);
+  }
+  if (lum.tilt_range <= 0 || lum.tilt_range > kMaxTiltRangeRaw) {
+    return StrFormat("tilt range %d (Q16.16 degrees) is outside (0, 360]", lum.tilt_range);
+  }
+  return CheckLidTable(lum.lid, lum.sh_degree);
+}
+
+std::string CheckLidTable(const BakeLid& lid, int sh_degree) {
+  const size_t planes = lid.c_deg.size(), gammas = lid.gamma_deg.size();
+  if (planes == 0) {
+    if (gammas != 0 || !lid.table.empty() || !lid.sh.empty()) {
+      return "an axisymmetric LID (no C planes) has no gammas, table or SH coefficients";
+    }
+    return "";
+  }
+  if (planes < kMinLidPlanes || planes > kMaxLidPlanes || gammas < kMinLidGammas ||
+      gammas > kMaxLidGammas || static_cast<uint64_t>(planes) * gammas > kMaxLidTableValues) {
+    return StrFormat("LID table of %llu planes x %llu gammas is outside [%u, %u] x [%u, %u] or "
+                     "above %llu values",
+                     static_cast<ull>(planes), static_cast<ull>(gammas), kMinLidPlanes,
+                     kMaxLidPlanes, kMinLidGammas, kMaxLidGammas,
+                     static_cast<ull>(kMaxLidTableValues));
+  }
+  if (lid.c_deg.front() != 0 || lid.c_deg.back() != (360 << 16)) {
+    return "LID C angles must run from 0 to 360 degrees";
+  }
+  for (size_t p = 1; p < planes; ++p) {
+    if (lid.c_deg[p] <= lid.c_deg[p - 1]) {
+      return StrFormat("LID C angle %llu does not increase", static_cast<ull>(p));
+    }
+  }
+  for (size_t g = 0; g < gammas; ++g) {
+    if (lid.gamma_deg[g] < 0 || lid.gamma_deg[g] > (180 << 16) ||
+        (g > 0 && lid.gamma_deg[g] <= lid.gamma_deg[g - 1])) {
+      return StrFormat("LID gamma angle %llu: %d (Q16.16 degrees) is outside [0, 180] or does "
+                       "not increase",
+                       static_cast<ull>(g), lid.gamma_deg[g]);
+    }
+  }
+  if (lid.table.size() != planes * gammas) {
+    return CountMismatch("LID table", lid.table.size(), "planes x gammas", planes * gammas);
+  }
+  for (size_t i = 0; i < lid.table.size(); ++i) {
+    if (lid.table[i] < 0 || lid.table[i] > kMaxCandelaRaw) {
+      return StrFormat("LID table value %llu: %lld (Q48.16 cd) is outside [0, 2^31 cd]",
+                       static_cast<ull>(i), static_cast<long long>(lid.table[i]));
+    }
+  }
+  for (size_t g = 0; g < gammas; ++g) {
+    if (lid.table[(planes - 1) * gammas + g] != lid.table[g]) {
+      return StrFormat("LID table: the plane at C 360 differs from C 0 at gamma %llu",
+                       static_cast<ull>(g));
+    }
+  }
+  const size_t terms = static_cast<size_t>(ShTermCount(sh_degree));
+  if (lid.sh.size() != terms) {
+    return CountMismatch("LID SH coefficients", lid.sh.size(), "(N+1)^2", terms);
+  }
+  for (size_t t = 0; t < terms; ++t) {
+    if (lid.sh[t] < -kMaxShCoefficientRaw || lid.sh[t] > kMaxShCoefficientRaw) {
+      return StrFormat("LID SH coefficient %llu: %lld (Q48.16 cd) is outside +-2^34 cd",
+                       static_cast<ull>(t), static_cast<long long>(lid.sh[t]));
     }
   }
   return "";

@@ -31,6 +31,8 @@ std::string CheckMesh(const BakeMesh& mesh);
 std::string CheckGrid(const BakeGrid& grid);
 // Everything but the receivers: name, enums, degree, defaults, LID.
 std::string CheckLuminaire(const BakeLuminaire& lum);
+// A LID's (C, gamma) table and SH coefficients (empty for an axisymmetric one).
+std::string CheckLidTable(const BakeLid& lid, int sh_degree);
 // The exact direct term of one luminaire on one receiver set of `receivers` points.
 std::string CheckDirect(const BakeLightReceivers& rec, DirectMode mode, uint32_t receivers);
 // The SH basis of one luminaire on one receiver set.

@@ -1,4 +1,4 @@
-// On-disk layout of a bake file, format version 1: the constants the writer
+// On-disk layout of a bake file, format version 2: the constants the writer
 // and the reader share. docs/bake-format.md is the specification; keep the
 // two in step. Private to the runtime.
 #pragma once
@@ -13,7 +13,10 @@ namespace relight::bake_format {
 
 // --- File header (28 bytes) and table of contents (36 bytes per section).
 inline constexpr uint8_t kMagic[8] = {'R', 'E', 'L', 'I', 'G', 'H', 'T', '\0'};
-inline constexpr uint32_t kVersion = 1;
+inline constexpr uint32_t kVersion = 2;
+// Version 1 files still read: their LUMI sections end after the LID samples
+// (no orientation, ranges or (C, gamma) table; defaults apply).
+inline constexpr uint32_t kOldestVersion = 1;
 inline constexpr size_t kVersionOffset = 8;
 inline constexpr size_t kSectionCountOffset = 12;
 inline constexpr size_t kFileSizeOffset = 16;
@@ -76,6 +79,16 @@ inline constexpr uint32_t kMaxLuminaires = 256;
 inline constexpr uint32_t kMinLidSamples = 3;
 inline constexpr uint32_t kMaxLidSamples = 65537;
 inline constexpr int64_t kMaxCandelaRaw = int64_t{1} << 47;  // 2^31 cd in Q48.16
+// A (C, gamma) table: planes 0..360 and gammas, and values in all.
+inline constexpr uint32_t kMinLidPlanes = 3;
+inline constexpr uint32_t kMaxLidPlanes = 1441;
+inline constexpr uint32_t kMinLidGammas = 2;
+inline constexpr uint32_t kMaxLidGammas = 1441;
+inline constexpr uint64_t kMaxLidTableValues = uint64_t{1} << 20;
+inline constexpr int64_t kMaxShCoefficientRaw = int64_t{1} << 50;  // |c| <= 2^34 cd in Q48.16
+inline constexpr int32_t kMaxTurnRaw = 360 << 16;   // yaw, roll: [-360, 360] degrees
+inline constexpr int32_t kMaxPanRangeRaw = 720 << 16;
+inline constexpr int32_t kMaxTiltRangeRaw = 360 << 16;
 inline constexpr int32_t kMinScaleExponent = -128;
 inline constexpr int32_t kMaxScaleExponent = 127;
 inline constexpr int32_t kScaleMantissaMin = int32_t{1} << 29;
@@ -96,6 +109,8 @@ inline constexpr uint64_t kMeshBytesPerTriangle = 3 * 4 + 4;
 inline constexpr uint64_t kGridFixedBytes = 2 * 4;
 inline constexpr uint64_t kGridBytesPerPoint = 3 * 4 + 3 * 2;
 inline constexpr uint64_t kLumiFixedBytes = 3 * 4 + 4 * 1 + 2 * 4 + 4 * 2 + 4;
+// Version 2 tail: yaw, roll, pan and tilt range, plane and gamma counts, SH count.
+inline constexpr uint64_t kLumiTailFixedBytes = 4 * 4 + 2 * 4 + 4;
 inline constexpr uint64_t kScaleBytes = 8;  // i32 mantissa, i32 exponent
 inline constexpr uint64_t kDirectBytesPerReceiver = 3 * 2 + 4;
 inline constexpr uint64_t kBasisBytesPerValue = 2;
@@ -113,6 +128,12 @@ constexpr uint64_t GridBytes(uint64_t name_bytes, uint64_t points) {
 constexpr uint64_t LumiBytes(uint64_t name_bytes, uint64_t lid_samples) {
   return kStringBytes + name_bytes + kLumiFixedBytes + 8 * lid_samples;
 }
+constexpr uint64_t LumiTailBytes(uint64_t planes, uint64_t gammas, uint64_t sh_terms) {
+  return kLumiTailFixedBytes + 4 * (planes + gammas) + 8 * planes * gammas + 8 * sh_terms;
+}
+inline constexpr uint64_t kMaxLumiTailBytes =
+    kLumiTailFixedBytes + 4 * (kMaxLidPlanes + kMaxLidGammas) + 8 * kMaxLidTableValues +
+    8 * static_cast<uint64_t>(ShTermCount(kMaxShDegree));
 constexpr uint64_t DirectBytes(uint64_t receivers) {
   return kScaleBytes + kDirectBytesPerReceiver * receivers;
 }

@@ -101,6 +101,7 @@ class Parser {
                               name_.c_str(), version, kVersion));
     }
     if (version == 0) return Corrupt(where, "format version 0");
+    version_ = version;
     const uint32_t sections = LoadLe<uint32_t>(data_ + kSectionCountOffset);
     if (sections < 2 || sections > kMaxSections) {
       return Corrupt(where,
@@ -327,8 +328,10 @@ class Parser {
   Status ParseLuminaire(uint32_t l, Bake* bake) {
     const std::string label = StrFormat("section LUMI[%u]", l);
     const size_t index = 2 + counts_.grids + l;
-    RELIGHT_RETURN_IF_ERROR(Expect(index, kTagLumi, label, LumiBytes(1, kMinLidSamples),
-                                   LumiBytes(kMaxNameBytes, kMaxLidSamples)));
+    const bool tail = version_ >= 2;
+    RELIGHT_RETURN_IF_ERROR(
+        Expect(index, kTagLumi, label, LumiBytes(1, kMinLidSamples) + (tail ? kLumiTailFixedBytes : 0),
+               LumiBytes(kMaxNameBytes, kMaxLidSamples) + (tail ? kMaxLumiTailBytes : 0)));
     ByteReader r(nullptr, 0);
     RELIGHT_RETURN_IF_ERROR(Load(index, label, &r));
     BakeLuminaire lum;
@@ -351,10 +354,48 @@ class Parser {
     if (samples > r.remaining() / 8) return Corrupt(label, "payload too short for the LID samples");
     lum.lid.candela.resize(samples);
     for (int64_t& cd : lum.lid.candela) cd = r.Get<int64_t>("LID");
+    if (tail) RELIGHT_RETURN_IF_ERROR(ParseLuminaireTail(label, &r, &lum));
     RELIGHT_RETURN_IF_ERROR(Finish(r, label));
     const std::string e = CheckLuminaire(lum);
     if (!e.empty()) return Corrupt(label, e);
     bake->luminaires.push_back(std::move(lum));
+    return Status::Ok();
+  }
+
+  // Version 2: orientation, console ranges, the (C, gamma) table and its SH
+  // coefficients. Counts are checked before anything is allocated.
+  Status ParseLuminaireTail(const std::string& label, ByteReader* r, BakeLuminaire* lum) {
+    lum->yaw = r->Get<int32_t>("yaw");
+    lum->roll = r->Get<int32_t>("roll");
+    lum->pan_range = r->Get<int32_t>("pan range");
+    lum->tilt_range = r->Get<int32_t>("tilt range");
+    const uint32_t planes = r->Get<uint32_t>("LID plane count");
+    const uint32_t gammas = r->Get<uint32_t>("LID gamma count");
+    if (r->failed()) return Finish(*r, label);
+    if ((planes == 0) != (gammas == 0) || planes > kMaxLidPlanes || gammas > kMaxLidGammas ||
+        uint64_t{planes} * gammas > kMaxLidTableValues) {
+      return Corrupt(label, StrFormat("LID table of %u planes x %u gammas is outside the limits "
+                                      "(0 x 0, or [%u, %u] x [%u, %u] and at most %llu values)",
+                                      planes, gammas, kMinLidPlanes, kMaxLidPlanes, kMinLidGammas,
+                                      kMaxLidGammas, static_cast<ull>(kMaxLidTableValues)));
+    }
+    const uint64_t need = LumiTailBytes(planes, gammas, 0) - kLumiTailFixedBytes;
+    if (need > r->remaining()) return Corrupt(label, "payload too short for the LID table");
+    lum->lid.c_deg.resize(planes);
+    lum->lid.gamma_deg.resize(gammas);
+    lum->lid.table.resize(size_t{planes} * gammas);
+    for (int32_t& v : lum->lid.c_deg) v = r->Get<int32_t>("LID C angle");
+    for (int32_t& v : lum->lid.gamma_deg) v = r->Get<int32_t>("LID gamma angle");
+    for (int64_t& v : lum->lid.table) v = r->Get<int64_t>("LID table");
+    const uint32_t terms = r->Get<uint32_t>("LID SH coefficient count");
+    if (r->failed()) return Finish(*r, label);
+    if (terms > static_cast<uint32_t>(ShTermCount(kMaxShDegree)) || uint64_t{terms} * 8 > r->remaining()) {
+      return Corrupt(label, StrFormat("LID has %u SH coefficients (at most %d, and the payload "
+                                      "must hold them)",
+                                      terms, ShTermCount(kMaxShDegree)));
+    }
+    lum->lid.sh.resize(terms);
+    for (int64_t& v : lum->lid.sh) v = r->Get<int64_t>("LID SH coefficient");
     return Status::Ok();
   }
 
@@ -444,6 +485,7 @@ class Parser {
   size_t size_;
   std::string name_;  // "'path'" or "(in memory)", for messages
   size_t toc_end_ = 0;
+  uint32_t version_ = kVersion;
   std::vector<TocEntry> toc_;
   Counts counts_;
   std::vector<uint8_t> scratch_;  // one decompressed section at a time

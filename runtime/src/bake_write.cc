@@ -126,6 +126,18 @@ void EncodeLuminaire(const BakeLuminaire& lum, std::vector<uint8_t>* out) {
   for (int16_t v : lum.default_rgb) w.Put(v);
   w.Put(static_cast<uint32_t>(lum.lid.candela.size()));
   for (int64_t cd : lum.lid.candela) w.Put(cd);
+  // Version 2 tail.
+  w.Put(lum.yaw);
+  w.Put(lum.roll);
+  w.Put(lum.pan_range);
+  w.Put(lum.tilt_range);
+  w.Put(static_cast<uint32_t>(lum.lid.c_deg.size()));
+  w.Put(static_cast<uint32_t>(lum.lid.gamma_deg.size()));
+  for (int32_t v : lum.lid.c_deg) w.Put(v);
+  for (int32_t v : lum.lid.gamma_deg) w.Put(v);
+  for (int64_t v : lum.lid.table) w.Put(v);
+  w.Put(static_cast<uint32_t>(lum.lid.sh.size()));
+  for (int64_t v : lum.lid.sh) w.Put(v);
 }
 
 void PutScale(ByteWriter* w, QuantScale s) {

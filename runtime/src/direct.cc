@@ -4,6 +4,7 @@
 #include <cstddef>
 
 #include "lid_lookup.h"
+#include "lid_table.h"
 #include "relight/fixed_math.h"
 #include "round_shift.h"
 
@@ -35,20 +36,40 @@ int64_t DirectIlluminanceQ20(const int16_t direction_q14[3], uint32_t geometry,
                          static_cast<UInt128>(static_cast<Int128>(cz) * cz);
   const int64_t sin_q60 = static_cast<int64_t>(ISqrt128(cross2));
   const Bam gamma = Atan2Bam(sin_q60, cos_q60);  // 0 .. 2^31, sin >= 0
-  const int64_t intensity_q16 = LidIntensityQ16(lid_q16, lid_m, gamma);
+  return IlluminanceQ20(LidIntensityQ16(lid_q16, lid_m, gamma), geometry, geometry_scale);
+}
+
+int64_t IlluminanceQ20(int64_t intensity_q16, uint32_t geometry, QuantScale geometry_scale) {
   // Q48.16 cd x g x mantissa x 2^(exponent - 30) = Q.16 lux; x 2^4 -> Q.20.
   const Int128 p = static_cast<Int128>(intensity_q16) * geometry * geometry_scale.mantissa;
   return RoundShiftSat64(p, static_cast<int64_t>(geometry_scale.exponent) - 26);
 }
 
-void DirectLightQ12(const DirectReceivers& receivers, const int32_t axis_q30[3],
-                    const int64_t* lid_q16, int lid_m, const uint32_t* reflectance_over_pi_q32,
-                    DirectStore store, int32_t* out) {
+int64_t DirectIlluminanceTableQ20(const int16_t direction_q14[3], uint32_t geometry,
+                                  QuantScale geometry_scale, const FixtureFrameQ30& frame,
+                                  const LidTableView& table) {
+  if (geometry == 0 || geometry_scale.mantissa == 0) return 0;
+  const int64_t d[3] = {direction_q14[0], direction_q14[1], direction_q14[2]};
+  if ((d[0] | d[1] | d[2]) == 0) return 0;
+  // Q1.14 x Q1.30 = Q2.44; three products < 2^46.
+  const auto dot = [&](const int32_t v[3]) { return d[0] * v[0] + d[1] * v[1] + d[2] * v[2]; };
+  const int64_t x = dot(frame.c0), y = dot(frame.c90), z = dot(frame.axis);
+  const UInt128 r2 = static_cast<UInt128>(static_cast<Int128>(x) * x) +
+                     static_cast<UInt128>(static_cast<Int128>(y) * y);
+  const int64_t sin_gamma = static_cast<int64_t>(ISqrt128(r2));
+  const Bam gamma = Atan2Bam(sin_gamma, z);  // 0 .. 2^31
+  const Bam c = Atan2Bam(y, x);              // a full turn
+  return IlluminanceQ20(LidTableIntensityQ16(table, c, gamma), geometry, geometry_scale);
+}
+
+namespace {
+
+// Illuminance e(r) (Q.20 lux) of each receiver to LightQ12 luminance or lux.
+template <typename Illuminance>
+void StoreDirect(const DirectReceivers& receivers, const uint32_t* reflectance_over_pi_q32,
+                 DirectStore store, int32_t* out, Illuminance illuminance_q20) {
   for (uint32_t r = 0; r < receivers.count; ++r) {
-    const int64_t e_q20 =
-        DirectIlluminanceQ20(receivers.direction_q14 + static_cast<size_t>(r) * 3,
-                             receivers.geometry[r], receivers.geometry_scale, axis_q30, lid_q16,
-                             lid_m);
+    const int64_t e_q20 = illuminance_q20(r);
     int32_t* dst = out + static_cast<size_t>(r) * 3;
     for (int c = 0; c < 3; ++c) {
       int64_t v = 0;
@@ -65,6 +86,27 @@ void DirectLightQ12(const DirectReceivers& receivers, const int32_t axis_q30[3],
       dst[c] = SaturateToInt32(value);
     }
   }
+}
+
+}  // namespace
+
+void DirectLightQ12(const DirectReceivers& receivers, const int32_t axis_q30[3],
+                    const int64_t* lid_q16, int lid_m, const uint32_t* reflectance_over_pi_q32,
+                    DirectStore store, int32_t* out) {
+  StoreDirect(receivers, reflectance_over_pi_q32, store, out, [&](uint32_t r) {
+    return DirectIlluminanceQ20(receivers.direction_q14 + static_cast<size_t>(r) * 3,
+                                receivers.geometry[r], receivers.geometry_scale, axis_q30, lid_q16,
+                                lid_m);
+  });
+}
+
+void DirectLightTableQ12(const DirectReceivers& receivers, const FixtureFrameQ30& frame,
+                         const LidTableView& table, const uint32_t* reflectance_over_pi_q32,
+                         DirectStore store, int32_t* out) {
+  StoreDirect(receivers, reflectance_over_pi_q32, store, out, [&](uint32_t r) {
+    return DirectIlluminanceTableQ20(receivers.direction_q14 + static_cast<size_t>(r) * 3,
+                                     receivers.geometry[r], receivers.geometry_scale, frame, table);
+  });
 }
 
 }  // namespace relight

@@ -6,6 +6,8 @@
 
 #include <cstdint>
 
+#include "fixture_frame.h"
+#include "lid_table.h"
 #include "relight/fixed.h"
 
 namespace relight {
@@ -34,6 +36,18 @@ int64_t DirectIlluminanceQ20(const int16_t direction_q14[3], uint32_t geometry,
                              QuantScale geometry_scale, const int32_t axis_q30[3],
                              const int64_t* lid_q16, int lid_m);
 
+// E = I * g * mantissa * 2^(exponent - 26) in Q43.20 lux: the common tail
+// of both direct terms (128-bit product < 2^125, rounded once, saturated).
+int64_t IlluminanceQ20(int64_t intensity_q16, uint32_t geometry, QuantScale geometry_scale);
+
+// The same for a LID given as a (C, gamma) table (a luminaire that is not
+// axisymmetric): the direction into the fixture frame (Q1.14 x Q1.30 = Q2.44
+// dot products with c0, c90 and the axis), gamma = atan2(|(x, y)|, z),
+// C = atan2(y, x) (binary angles), I from LidTableIntensityQ16.
+int64_t DirectIlluminanceTableQ20(const int16_t direction_q14[3], uint32_t geometry,
+                                  QuantScale geometry_scale, const FixtureFrameQ30& frame,
+                                  const LidTableView& table);
+
 enum class DirectStore { kWrite, kAdd };
 
 // The direct light of one luminaire on a receiver set, LightQ12, 3 per
@@ -44,5 +58,9 @@ enum class DirectStore { kWrite, kAdd };
 void DirectLightQ12(const DirectReceivers& receivers, const int32_t axis_q30[3],
                     const int64_t* lid_q16, int lid_m, const uint32_t* reflectance_over_pi_q32,
                     DirectStore store, int32_t* out);
+// The same for a (C, gamma) table LID.
+void DirectLightTableQ12(const DirectReceivers& receivers, const FixtureFrameQ30& frame,
+                         const LidTableView& table, const uint32_t* reflectance_over_pi_q32,
+                         DirectStore store, int32_t* out);
 
 }  // namespace relight

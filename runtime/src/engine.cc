@@ -21,11 +21,17 @@
 #include <utility>
 #include <vector>
 
+#include "console_aim.h"
 #include "direct.h"
+#include "fixture_frame.h"
+#include "lid_table.h"
 #include "mix.h"
 #include "recombine.h"
+#include "relight/legendre_weights.h"
 #include "relight/sh_eval.h"
 #include "relight/sh_index.h"
+#include "relight/sh_rotation.h"
+#include "round_shift.h"
 #include "weights.h"
 
 namespace relight {
@@ -36,6 +42,9 @@ constexpr int64_t kFullTurnQ16 = int64_t{360} << 16;
 // Largest accepted LID sample: 2^24 cd in Q48.16. Keeps every Legendre
 // weight and per-term coefficient (<= ~1000 x the peak) far inside int64.
 constexpr int64_t kMaxCandelaQ16 = int64_t{1} << 40;
+// Largest SH coefficient of a (C, gamma) LID: 2^30 cd (a coefficient is at
+// most sqrt(4 pi) x the peak), so rotated coefficients stay far inside int64.
+constexpr int64_t kMaxShCoefficientQ16 = int64_t{1} << 46;
 
 // Degrees wrapped to (-180, 180].
 Q16_16 WrapDegrees(Q16_16 degrees) {
@@ -58,6 +67,15 @@ struct LuminaireRuntime {
   int degree = 0;
   int lid_m = 0;
   int64_t damped_weights_q16[kMaxShDegree + 1] = {};
+  // Beam editing (Dobashi 4.1): the undamped weights w_l and the f_l table
+  // of Eq. 20 that Eq. 21 updates them with.
+  int64_t weights_q16[kMaxShDegree + 1] = {};
+  std::vector<int32_t> legendre_table_q30;
+  // A LID that is not axisymmetric: its (C, gamma) table for the direct term
+  // and its SH coefficients in the fixture frame, sigma applied (Q48.16).
+  bool has_table = false;
+  LidTableView table;
+  std::vector<int64_t> sh_local_q16;
   std::vector<SetCache> sets;
 };
 
@@ -87,12 +105,39 @@ Status ValidateBake(const Bake& bake) {
     if (lum.direct_mode != DirectMode::kExactDirect && lum.direct_mode != DirectMode::kAllInSh) {
       return Invalid(lum, "unknown direct mode");
     }
-    if (lum.mounting != Mounting::kHanging && lum.mounting != Mounting::kStanding) {
+    if (lum.mounting != Mounting::kHanging && lum.mounting != Mounting::kStanding &&
+        lum.mounting != Mounting::kWall) {
       return Invalid(lum, "unknown mounting");
     }
     if (lum.lid.candela.size() < 3) return Invalid(lum, "LID needs at least 3 samples");
     for (int64_t cd : lum.lid.candela) {
       if (cd < 0 || cd >= kMaxCandelaQ16) return Invalid(lum, "LID sample outside [0, 2^24) cd");
+    }
+    if (!lum.lid.axisymmetric()) {
+      const BakeLid& lid = lum.lid;
+      const size_t planes = lid.c_deg.size(), gammas = lid.gamma_deg.size();
+      if (planes < 2 || gammas < 1 || lid.table.size() != planes * gammas ||
+          lid.c_deg.front() != 0 || lid.c_deg.back() != (360 << 16) ||
+          lid.sh.size() != static_cast<size_t>(ShTermCount(lum.sh_degree))) {
+        return Invalid(lum, "LID table sizes or angles inconsistent");
+      }
+      for (size_t i = 1; i < planes; ++i) {
+        if (lid.c_deg[i] <= lid.c_deg[i - 1]) return Invalid(lum, "LID C angles must increase");
+      }
+      for (size_t i = 0; i < gammas; ++i) {
+        if (lid.gamma_deg[i] < 0 || lid.gamma_deg[i] > (180 << 16) ||
+            (i > 0 && lid.gamma_deg[i] <= lid.gamma_deg[i - 1])) {
+          return Invalid(lum, "LID gamma angles must increase within [0, 180]");
+        }
+      }
+      for (int64_t cd : lid.table) {
+        if (cd < 0 || cd >= kMaxCandelaQ16) return Invalid(lum, "LID table value outside [0, 2^24) cd");
+      }
+      for (int64_t c : lid.sh) {
+        if (c <= -kMaxShCoefficientQ16 || c >= kMaxShCoefficientQ16) {
+          return Invalid(lum, "LID SH coefficient outside +-2^30 cd");
+        }
+      }
     }
     if (lum.receivers.size() != bake.receiver_set_count()) {
       return Invalid(lum, "receiver set count differs from 1 + grids");
@@ -121,6 +166,8 @@ struct Engine::Impl {
   std::vector<uint32_t> reflectance_over_pi_q32;  // 3 per vertex
   std::vector<int64_t> scratch;                   // recombine / mix blocks
   std::vector<int64_t> alm_q30, coef_q16;         // per term
+  std::unique_ptr<ShRotationTables> rotation;     // only with a (C, gamma) LID
+  std::vector<int32_t> rotation_q30;              // band matrices, kShRotationValues
   std::vector<int32_t> k;                         // per term and channel
   std::vector<MixSource> mix;                     // per luminaire
   std::vector<int32_t> vertex_out;
@@ -130,6 +177,7 @@ struct Engine::Impl {
   int last_terms = 0;
 
   Status Allocate();
+  Status EditLidSample(int index, int sample, int64_t candela_q16);
   bool Lit(const LuminaireRuntime& lum) const;
   int Recompute(int index);
   void Remix();
@@ -157,6 +205,30 @@ Status Engine::Impl::Allocate() {
     const Status st = DampedLegendreWeightsQ16(l.degree, b.use_sigma != 0, b.lid.candela.data(),
                                                l.lid_m, table.data(), l.damped_weights_q16);
     if (!st.ok()) return Invalid(b, st.message().c_str());
+    LegendreWeightsQ16(table.data(), l.degree, l.lid_m, b.lid.candela.data(), l.weights_q16);
+    l.legendre_table_q30 = std::move(table);
+    if (!b.lid.axisymmetric()) {
+      l.has_table = true;
+      l.table.c_deg_q16 = b.lid.c_deg.data();
+      l.table.planes = static_cast<uint32_t>(b.lid.c_deg.size());
+      l.table.gamma_deg_q16 = b.lid.gamma_deg.data();
+      l.table.gammas = static_cast<uint32_t>(b.lid.gamma_deg.size());
+      l.table.candela_q16 = b.lid.table.data();
+      l.sh_local_q16 = b.lid.sh;
+      if (b.use_sigma != 0) {
+        for (int t = 0; t < ShTermCount(l.degree); ++t) {  // Dobashi Eq. 12-13, per band
+          const Int128 p = static_cast<Int128>(l.sh_local_q16[t]) *
+                           SigmaQ30(l.degree, ShDegreeOf(t)).raw();
+          l.sh_local_q16[t] = static_cast<int64_t>((p + (static_cast<Int128>(1) << 29)) >> 30);
+        }
+      }
+      if (!rotation) {
+        rotation.reset(new ShRotationTables);
+        InitShRotationTables(rotation.get());
+        rotation_q30.assign(kShRotationValues, 0);
+      }
+    }
+    l.state.roll_deg = WrapDegrees(Q16_16::FromRaw(b.roll));
     l.state.pan_deg = WrapDegrees(Q16_16::FromRaw(b.default_pan));
     l.state.tilt_deg = WrapDegrees(Q16_16::FromRaw(b.default_tilt));
     l.state.dimmer = ClampUnit(Q1_15::FromRaw(b.default_dimmer));
@@ -185,6 +257,34 @@ Status Engine::Impl::Allocate() {
   return Status::Ok();
 }
 
+// Dobashi 4.1: one control point (= LID sample, the paper's simplification)
+// moves; Eq. 21 updates the weights by its increment alone, O(N).
+Status Engine::Impl::EditLidSample(int index, int sample, int64_t candela_q16) {
+  BakeLuminaire& b = bake.luminaires[index];
+  LuminaireRuntime& l = lums[index];
+  if (l.has_table) return Status(StatusCode::kUnsupported, "LID has planes");
+  if (sample < 0 || sample > l.lid_m) return Status(StatusCode::kInvalidArgument, "LID sample idx");
+  if (candela_q16 < 0 || candela_q16 >= kMaxCandelaQ16) {
+    return Status(StatusCode::kOutOfRange, "LID candela");
+  }
+  const int64_t old = b.lid.candela[sample];
+  if (old == candela_q16) return Status::Ok();
+  UpdateLegendreWeightsQ16(l.legendre_table_q30.data(), l.degree, l.lid_m, sample, old, candela_q16,
+                           l.weights_q16);  // Eq. 21
+  b.lid.candela[sample] = candela_q16;
+  for (int d = 0; d <= l.degree; ++d) {  // Dobashi Eq. 12-13, as DampedLegendreWeightsQ16 does
+    if (b.use_sigma != 0) {
+      const Int128 p = static_cast<Int128>(l.weights_q16[d]) * SigmaQ30(l.degree, d).raw();
+      l.damped_weights_q16[d] = RoundShiftSat64(p, -30);
+    } else {
+      l.damped_weights_q16[d] = l.weights_q16[d];
+    }
+  }
+  l.dirty = true;
+  remix = true;
+  return Status::Ok();
+}
+
 bool Engine::Impl::Lit(const LuminaireRuntime& lum) const {
   for (int c = 0; c < 3; ++c) {
     if (GainQ30(lum.state.dimmer.raw(), lum.state.rgb[c].raw()) != 0) return true;
@@ -196,11 +296,27 @@ bool Engine::Impl::Lit(const LuminaireRuntime& lum) const {
 int Engine::Impl::Recompute(int index) {
   const BakeLuminaire& b = bake.luminaires[index];
   LuminaireRuntime& l = lums[index];
-  int32_t axis_q30[3];
-  BeamAxisQ30(b.mounting, l.state.pan_deg, l.state.tilt_deg, axis_q30);
+  FixturePoseQ16 pose;
+  pose.mounting = b.mounting;
+  pose.yaw_deg = Q16_16::FromRaw(b.yaw);
+  pose.pan_deg = l.state.pan_deg;
+  pose.tilt_deg = l.state.tilt_deg;
+  pose.roll_deg = l.state.roll_deg;
+  FixtureFrameQ30 frame;
+  MakeFixtureFrameQ30(pose, &frame);  // axis = BeamAxisQ30 for hanging/standing at yaw 0
+  const int32_t* axis_q30 = frame.axis;
   const int terms = ShTermCount(l.degree);
-  TermCoefficientsQ16(sh, l.degree, l.damped_weights_q16, axis_q30, alm_q30.data(),
-                      coef_q16.data());  // Dobashi Eq. 18
+  if (l.has_table) {
+    // The LID's own coefficients rotated from the fixture frame to the world.
+    const int32_t r_q30[3][3] = {{frame.c0[0], frame.c90[0], -frame.axis[0]},
+                                 {frame.c0[1], frame.c90[1], -frame.axis[1]},
+                                 {frame.c0[2], frame.c90[2], -frame.axis[2]}};
+    ShRotationMatricesQ30(*rotation, l.degree, r_q30, rotation_q30.data());
+    RotateShQ16(l.degree, rotation_q30.data(), l.sh_local_q16.data(), coef_q16.data());
+  } else {
+    TermCoefficientsQ16(sh, l.degree, l.damped_weights_q16, axis_q30, alm_q30.data(),
+                        coef_q16.data());  // Dobashi Eq. 18
+  }
   int passes = 0;
   for (uint32_t s = 0; s < bake.receiver_set_count(); ++s) {
     const BakeLightReceivers& rx = b.receivers[s];
@@ -217,12 +333,13 @@ int Engine::Impl::Recompute(int index) {
     direct.geometry = rx.geometry.data();
     direct.geometry_scale = rx.geometry_scale;
     direct.count = count;
-    if (s == 0) {
-      DirectLightQ12(direct, axis_q30, b.lid.candela.data(), l.lid_m,
-                     reflectance_over_pi_q32.data(), DirectStore::kAdd, cache.light.data());
+    const uint32_t* rho = s == 0 ? reflectance_over_pi_q32.data() : nullptr;
+    const DirectStore store = s == 0 ? DirectStore::kAdd : DirectStore::kWrite;
+    int32_t* out = s == 0 ? cache.light.data() : cache.direct.data();
+    if (l.has_table) {
+      DirectLightTableQ12(direct, frame, l.table, rho, store, out);
     } else {
-      DirectLightQ12(direct, axis_q30, b.lid.candela.data(), l.lid_m, nullptr, DirectStore::kWrite,
-                     cache.direct.data());
+      DirectLightQ12(direct, axis_q30, b.lid.candela.data(), l.lid_m, rho, store, out);
     }
   }
   return passes;
@@ -359,6 +476,85 @@ Status Engine::SetColour(int luminaire, Q1_15 r, Q1_15 g, Q1_15 b) {
     }
   }
   return Status::Ok();
+}
+
+Status Engine::SetRoll(int luminaire, Q16_16 roll_deg) {
+  if (luminaire < 0 || luminaire >= luminaire_count()) return BadIndex();
+  FixtureState& s = impl_->lums[luminaire].state;
+  const Q16_16 roll = WrapDegrees(roll_deg);
+  if (roll != s.roll_deg) {
+    s.roll_deg = roll;
+    impl_->lums[luminaire].dirty = true;
+    impl_->remix = true;
+  }
+  return Status::Ok();
+}
+
+Status Engine::SetPanTilt16(int luminaire, uint16_t pan, uint16_t tilt) {
+  if (luminaire < 0 || luminaire >= luminaire_count()) return BadIndex();
+  const BakeLuminaire& b = impl_->bake.luminaires[luminaire];
+  return SetPanTilt(luminaire, ConsoleToDegrees(pan, b.pan_range),
+                    ConsoleToDegrees(tilt, b.tilt_range));
+}
+
+Status Engine::AimAt(int luminaire, const int32_t target_q16[3]) {
+  if (luminaire < 0 || luminaire >= luminaire_count()) return BadIndex();
+  const BakeLuminaire& b = impl_->bake.luminaires[luminaire];
+  const FixtureState& s = impl_->lums[luminaire].state;
+  Q16_16 pan, tilt, chosen_pan, chosen_tilt;
+  if (!AimAtQ16(b.mounting, Q16_16::FromRaw(b.yaw), b.position, target_q16, &pan, &tilt)) {
+    return Status(StatusCode::kInvalidArgument, "aim: same point");
+  }
+  if (!ChooseAimInRange(pan, tilt, b.pan_range, b.tilt_range, s.pan_deg, s.tilt_deg, &chosen_pan,
+                        &chosen_tilt)) {
+    return Status(StatusCode::kOutOfRange, "aim: no reach");  // fits the string buffer
+  }
+  return SetPanTilt(luminaire, chosen_pan, chosen_tilt);
+}
+
+Status Engine::SetLidSample(int luminaire, int k, Q48_16 candela) {
+  if (luminaire < 0 || luminaire >= luminaire_count()) return BadIndex();
+  return impl_->EditLidSample(luminaire, k, candela.raw());
+}
+
+Status Engine::SetLidControlPoints(int luminaire, const Q16_16* gamma_deg, const Q48_16* candela,
+                                   int count) {
+  if (luminaire < 0 || luminaire >= luminaire_count()) return BadIndex();
+  if (count < 1 || gamma_deg == nullptr || candela == nullptr || gamma_deg[0].raw() != 0) {
+    return Status(StatusCode::kInvalidArgument, "control points");
+  }
+  for (int i = 0; i < count; ++i) {
+    const bool increasing = i == 0 || gamma_deg[i] > gamma_deg[i - 1];
+    if (!increasing || gamma_deg[i].raw() > (180 << 16) || candela[i].raw() < 0 ||
+        candela[i].raw() >= kMaxCandelaQ16) {
+      return Status(StatusCode::kInvalidArgument, "control points");
+    }
+  }
+  const int M = impl_->lums[luminaire].lid_m;
+  int seg = 0;
+  for (int k = 0; k <= M; ++k) {
+    // gamma_k = 180 k / M degrees in Q16.16 x M, compared without division.
+    const int64_t g_times_m = int64_t{180 << 16} * k;
+    while (seg + 1 < count && int64_t{gamma_deg[seg + 1].raw()} * M <= g_times_m) ++seg;
+    int64_t value = 0;
+    if (seg + 1 < count) {
+      const int64_t a = int64_t{gamma_deg[seg].raw()} * M, b = int64_t{gamma_deg[seg + 1].raw()} * M;
+      const Int128 num = static_cast<Int128>(candela[seg + 1].raw() - candela[seg].raw()) * (g_times_m - a);
+      const Int128 den = b - a;
+      value = candela[seg].raw() + static_cast<int64_t>((num + (num >= 0 ? den / 2 : -den / 2)) / den);
+    } else if (int64_t{gamma_deg[seg].raw()} * M == g_times_m) {
+      value = candela[seg].raw();  // the last control point itself; 0 past it
+    }
+    RELIGHT_RETURN_IF_ERROR(impl_->EditLidSample(luminaire, k, value));
+  }
+  return Status::Ok();
+}
+
+const int64_t* Engine::lid_samples(int luminaire, int* count) const {
+  if (luminaire < 0 || luminaire >= luminaire_count()) return nullptr;
+  const BakeLid& lid = impl_->bake.luminaires[luminaire].lid;
+  if (count != nullptr) *count = static_cast<int>(lid.candela.size());
+  return lid.candela.data();
 }
 
 FixtureState Engine::state(int luminaire) const {

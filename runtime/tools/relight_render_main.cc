@@ -14,6 +14,7 @@
 
 #include "relight/engine.h"
 #include "relight/osmesa_frame.h"
+#include "relight/pick.h"
 #include "frame_pipeline.h"
 #include "replay_frames.h"
 #include "set_args.h"
@@ -43,6 +44,36 @@ void PrintLuminaires(const relight::Engine& engine) {
   }
 }
 
+// --aim-at-pixel: the point under pixel X,Y of the current view (ID pass and
+// depth, Dobashi 4.2) becomes the luminaire's aim, as a console would do it.
+int AimAtPixel(relight::Engine& engine, const relight::CameraView& view, int width, int height,
+               const std::string& pixel, const std::string& luminaire) {
+  int x = 0, y = 0;
+  if (std::sscanf(pixel.c_str(), "%d,%d", &x, &y) != 2) return Fail("--aim-at-pixel wants X,Y", 2);
+  const int index = luminaire.empty() ? 0 : engine.FindLuminaire(luminaire);
+  if (index < 0 || index >= engine.luminaire_count()) {
+    return Fail("--aim-luminaire: no luminaire '" + luminaire + "' in the bake (see --list)", 2);
+  }
+  relight::OsMesaFrame frame;
+  if (relight::Status st = frame.Init(width, height, engine.bake().mesh); !st.ok()) return Fail(st.ToString(), 1);
+  frame.SetCamera(view);
+  relight::PickResult pick;
+  if (relight::Status st = relight::PickPixel(&frame, engine.bake().mesh, x, y, &pick); !st.ok()) {
+    return Fail("--aim-at-pixel " + pixel + ": " + st.ToString(), 2);
+  }
+  if (relight::Status st = engine.AimAt(index, pick.world_q16); !st.ok()) {
+    return Fail("--aim-at-pixel " + pixel + ": cannot aim '" + engine.bake().luminaires[index].name +
+                    "' there: " + st.ToString(), 2);
+  }
+  const relight::FixtureState s = engine.state(index);
+  const auto& names = engine.bake().mesh.surface_names;
+  std::printf("relight-render: aimed %s at %.3f,%.3f,%.3f (surface '%s'): pan %.2f tilt %.2f\n",
+              engine.bake().luminaires[index].name.c_str(), pick.world_m[0], pick.world_m[1],
+              pick.world_m[2], pick.surface < names.size() ? names[pick.surface].c_str() : "?",
+              s.pan_deg.raw() / 65536.0, s.tilt_deg.raw() / 65536.0);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -52,6 +83,7 @@ int main(int argc, char** argv) {
       "0..100%), r, g, b (0..1) or colour=R,G,B. Unset parameters keep the scene's defaults.\n"
       "Luminance (cd/m^2) is tone-mapped to sRGB with the bake's display white unless --white is given."};
   std::string bake_path, out_path = "frame.png", replay_path, camera_pos, camera_target, sheet_path;
+  std::string aim_pixel, aim_luminaire;
   std::vector<std::string> sets;
   int width = 1280, height = 720;
   double fps = 5, white_cd_m2 = 0, fov = 0;
@@ -73,6 +105,9 @@ int main(int argc, char** argv) {
   app.add_option("--fps", fps, "frames per second of script time for --replay")->capture_default_str()->check(CLI::Range(0.1, 240.0));
   app.add_option("--sheet", sheet_path, "with --replay: also write all frames, half size, tiled 4 per row into this PNG");
   app.add_flag("--list", list, "print the bake's luminaires and their default settings, then exit");
+  app.add_option("--aim-at-pixel", aim_pixel,
+                 "aim a luminaire at the surface point under pixel X,Y of the view (x right, y down)");
+  app.add_option("--aim-luminaire", aim_luminaire, "the luminaire --aim-at-pixel moves (default: the first)");
   CLI11_PARSE(app, argc, argv);
 
   relight::Engine engine;
@@ -92,6 +127,10 @@ int main(int argc, char** argv) {
   if (!camera_pos.empty() && !ParseVec3(camera_pos, view.position)) return Fail("--camera-pos wants X,Y,Z", 2);
   if (!camera_target.empty() && !ParseVec3(camera_target, view.target)) return Fail("--camera-target wants X,Y,Z", 2);
   if (fov > 0) view.fov_y_deg = static_cast<float>(fov);
+
+  if (!aim_pixel.empty()) {
+    if (int rc = AimAtPixel(engine, view, width, height, aim_pixel, aim_luminaire); rc != 0) return rc;
+  }
 
   const int32_t white_q12 = white_cd_m2 > 0 ? static_cast<int32_t>(std::lround(white_cd_m2 * 4096.0)) : 0;
   relight::cli::FramePipeline pipeline;

@@ -601,7 +601,7 @@ TEST_F(SceneFiles, BadLidTable) {
   ExpectError(Header() + Floor() + lum + "lid = { type = \"isotropic\", peak_cd = 0 }\n", lid_line,
               {"peak_cd must be a number > 0, got 0"});
   ExpectError(Header() + Floor() + lum + "lid = { type = \"ies\" }\n", lid_line,
-              {"type must be \"isotropic\", \"cos\" or \"table\", got \"ies\""});
+              {"type must be \"isotropic\", \"cos\", \"table\" or \"file\", got \"ies\""});
 }
 
 TEST_F(SceneFiles, DuplicateAndBadLuminaireNames) {

@@ -206,12 +206,13 @@ TEST_F(BakeIoTest, SingleBitFlipsAreRejected) {
 
 TEST_F(BakeIoTest, NewerVersionIsUnsupportedAndVersionZeroCorrupt) {
   Container c = Split(file_);
-  c.version = 2;
+  EXPECT_EQ(c.version, 2u);
+  c.version = 3;
   Bake out;
   const Bytes newer = Join(c);
   Status st = ParseBake(newer.data(), newer.size(), &out);
   EXPECT_EQ(st.code(), StatusCode::kUnsupported) << st.ToString();
-  EXPECT_TRUE(Contains(st.message(), "version 2")) << st.message();
+  EXPECT_TRUE(Contains(st.message(), "version 3")) << st.message();
   c.version = 0;
   ExpectCorrupt(Join(c), "version 0");
 }
@@ -391,6 +392,73 @@ TEST_F(BakeIoTest, HostileCountsAndFieldsInPayloadsAreRejected) {
                 "term 0 channel 0: zero scale but receiver");
 }
 
+// LUMI of format version 2 ends with the orientation, the console ranges, the
+// (C, gamma) table and its SH coefficients (docs/bake-format.md).
+TEST_F(BakeIoTest, HostileLuminaireTailsAreRejected) {
+  constexpr size_t kSmall = 64 * 1024;
+  // LUMI[0] 'spot': 181 LID samples, then the tail; 4 planes, 7 gammas, degree 2.
+  const size_t lumi = 4, fields = 4 + 4 + 12, tail = fields + 24 + 8 * 181;
+  const size_t c_at = tail + 24, g_at = c_at + 4 * 4, table_at = g_at + 4 * 7;
+  const size_t sh_count_at = table_at + 8 * 4 * 7, sh_at = sh_count_at + 4;
+  ASSERT_EQ(Payload(Split(file_).sections[lumi]).size(), sh_at + 8 * 9);
+  const auto edit = [&](const std::function<void(Bytes*)>& f) { return EditPayload(file_, lumi, f); };
+  ExpectCorrupt(edit([&](Bytes* p) { (*p)[fields] = 3; }),
+                "LUMI[0]: mounting 3 is not 0 (hanging), 1 (standing) or 2 (wall)");
+  ExpectCorrupt(edit([&](Bytes* p) { PutLe<int32_t>(&(*p)[tail], 361 << 16); }), "yaw");
+  ExpectCorrupt(edit([&](Bytes* p) { PutLe<int32_t>(&(*p)[tail + 4], -(400 << 16)); }), "roll");
+  ExpectCorrupt(edit([&](Bytes* p) { PutLe<int32_t>(&(*p)[tail + 8], 0); }), "pan range 0");
+  ExpectCorrupt(edit([&](Bytes* p) { PutLe<int32_t>(&(*p)[tail + 12], 400 << 16); }), "tilt range");
+  ExpectCorrupt(edit([&](Bytes* p) { PutLe<uint32_t>(&(*p)[tail + 16], 0x7FFFFFFFu); }),
+                "LID table of 2147483647 planes", kSmall);
+  ExpectCorrupt(edit([&](Bytes* p) { PutLe<uint32_t>(&(*p)[tail + 20], 0); }), "LID table of 4 planes x 0");
+  ExpectCorrupt(edit([&](Bytes* p) { PutLe<int32_t>(&(*p)[c_at + 4], 0); }),
+                "LID C angle 1 does not increase");
+  ExpectCorrupt(edit([&](Bytes* p) { PutLe<int32_t>(&(*p)[c_at + 12], 359 << 16); }),
+                "from 0 to 360");
+  ExpectCorrupt(edit([&](Bytes* p) { PutLe<int32_t>(&(*p)[g_at + 24], 200 << 16); }),
+                "LID gamma angle 6");
+  ExpectCorrupt(edit([&](Bytes* p) { PutLe<int64_t>(&(*p)[table_at], -1); }), "LID table value 0");
+  ExpectCorrupt(edit([&](Bytes* p) { PutLe<int64_t>(&(*p)[table_at + 8 * 21], 12345); }),
+                "plane at C 360 differs from C 0 at gamma 0");
+  ExpectCorrupt(edit([&](Bytes* p) { PutLe<uint32_t>(&(*p)[sh_count_at], 1000); }),
+                "LID has 1000 SH coefficients", kSmall);
+  ExpectCorrupt(edit([&](Bytes* p) { PutLe<uint32_t>(&(*p)[sh_count_at], 4); }), "unused bytes");
+  ExpectCorrupt(edit([&](Bytes* p) { PutLe<int64_t>(&(*p)[sh_at], INT64_MAX); }),
+                "LID SH coefficient 0");
+  ExpectCorrupt(edit([&](Bytes* p) { p->resize(p->size() - 8); }), "LUMI[0]");
+}
+
+// Format version 1 (no LUMI tail) still reads, with the defaults of version 2.
+TEST_F(BakeIoTest, Version1FilesStillRead) {
+  Container c = Split(file_);
+  c.version = 1;
+  Bake expected = bake_;
+  for (size_t l = 0; l < 2; ++l) {
+    Section& lumi = c.sections[4 + l];
+    Bytes raw = Payload(lumi);
+    const size_t samples = expected.luminaires[l].lid.candela.size();
+    raw.resize(4 + expected.luminaires[l].name.size() + 36 + 8 * samples);
+    SetPayload(&lumi, raw, l == 1);
+    BakeLuminaire& lum = expected.luminaires[l];
+    lum.lid.c_deg.clear();
+    lum.lid.gamma_deg.clear();
+    lum.lid.table.clear();
+    lum.lid.sh.clear();
+    lum.yaw = lum.roll = 0;
+    lum.pan_range = 540 << 16;
+    lum.tilt_range = 270 << 16;
+  }
+  Relayout(&c);
+  const Bytes v1 = Join(c);
+  Bake out;
+  const Status st = ParseBake(v1.data(), v1.size(), &out);
+  ASSERT_TRUE(st.ok()) << st.ToString();
+  ExpectBakesEqual(expected, out);
+  // A version 2 reader insists on the tail.
+  c.version = 2;
+  ExpectCorrupt(Join(c), "LUMI[0]");
+}
+
 // Random damage behind valid crcs reaches the semantic checks: the reader
 // must reject or accept without crashing, and whatever it accepts the writer
 // must accept too (both sides share one set of rules).
@@ -485,6 +553,13 @@ TEST_F(BakeIoTest, WriteRejectsInconsistentBakesAndKeepsTheOldFile) {
       {"luminaire 0: mounting 9",
        [](Bake* b) { b->luminaires[0].mounting = static_cast<Mounting>(9); }},
       {"luminaire 0: default colour -1", [](Bake* b) { b->luminaires[0].default_rgb[2] = -1; }},
+      {"luminaire 0: LID table has 27 values, expected planes x gammas = 28",
+       [](Bake* b) { b->luminaires[0].lid.table.pop_back(); }},
+      {"luminaire 0: LID SH coefficients has 4 values, expected (N+1)^2 = 9",
+       [](Bake* b) { b->luminaires[0].lid.sh.resize(4); }},
+      {"luminaire 1: an axisymmetric LID (no C planes) has no gammas",
+       [](Bake* b) { b->luminaires[1].lid.gamma_deg = {0, 1}; }},
+      {"luminaire 1: pan range 0", [](Bake* b) { b->luminaires[1].pan_range = 0; }},
       {"scene: white luminance 0", [](Bake* b) { b->white_luminance = 0; }},
       {"counts: grid count 65 exceeds the limit 64",
        [](Bake* b) {

@@ -81,6 +81,27 @@ inline BakeLuminaire MakeLuminaire(std::mt19937* rng, const char* name, DirectMo
   return lum;
 }
 
+// A (C, gamma) table with its SH coefficients (format version 2): planes
+// 0, 90, 200, 360 and gammas 0..180 in 30-degree steps, random values.
+inline void MakeLidTable(std::mt19937* rng, BakeLuminaire* lum) {
+  lum->lid.c_deg = {0, 90 << 16, 200 << 16, 360 << 16};
+  for (int g = 0; g <= 180; g += 30) lum->lid.gamma_deg.push_back(g << 16);
+  const size_t gammas = lum->lid.gamma_deg.size();
+  for (size_t p = 0; p < 3; ++p) {
+    for (size_t g = 0; g < gammas; ++g) {
+      lum->lid.table.push_back(RandomInt<int64_t>(rng, 0, int64_t{5000} << 16));
+    }
+  }
+  for (size_t g = 0; g < gammas; ++g) lum->lid.table.push_back(lum->lid.table[g]);
+  for (int t = 0; t < ShTermCount(lum->sh_degree); ++t) {
+    lum->lid.sh.push_back(RandomInt<int64_t>(rng, -(int64_t{3000} << 16), int64_t{3000} << 16));
+  }
+  lum->yaw = RandomInt<int32_t>(rng, -(360 << 16), 360 << 16);
+  lum->roll = RandomInt<int32_t>(rng, -(360 << 16), 360 << 16);
+  lum->pan_range = 630 << 16;
+  lum->tilt_range = 265 << 16;
+}
+
 inline Bake MakeBake(uint32_t seed) {
   std::mt19937 rng(seed);
   Bake b;
@@ -123,6 +144,8 @@ inline Bake MakeBake(uint32_t seed) {
   b.grids = {desk, path};
   b.luminaires.push_back(MakeLuminaire(&rng, "spot", DirectMode::kExactDirect, 2, 181));
   b.luminaires.push_back(MakeLuminaire(&rng, "wash", DirectMode::kAllInSh, 3, 37));
+  MakeLidTable(&rng, &b.luminaires[0]);
+  b.luminaires[1].mounting = Mounting::kWall;
   for (BakeLuminaire& lum : b.luminaires) {
     for (uint32_t s = 0; s < b.receiver_set_count(); ++s) {
       lum.receivers.push_back(MakeReceivers(&rng, lum, b.receiver_count(s)));
@@ -180,6 +203,14 @@ inline void ExpectBakesEqual(const Bake& a, const Bake& b) {
     EXPECT_EQ(x.default_tilt, y.default_tilt);
     EXPECT_EQ(x.default_dimmer, y.default_dimmer);
     EXPECT_EQ(x.lid.candela, y.lid.candela);
+    EXPECT_EQ(x.lid.c_deg, y.lid.c_deg);
+    EXPECT_EQ(x.lid.gamma_deg, y.lid.gamma_deg);
+    EXPECT_EQ(x.lid.table, y.lid.table);
+    EXPECT_EQ(x.lid.sh, y.lid.sh);
+    EXPECT_EQ(x.yaw, y.yaw);
+    EXPECT_EQ(x.roll, y.roll);
+    EXPECT_EQ(x.pan_range, y.pan_range);
+    EXPECT_EQ(x.tilt_range, y.tilt_range);
     ASSERT_EQ(x.receivers.size(), y.receivers.size());
     for (size_t s = 0; s < x.receivers.size(); ++s) {
       SCOPED_TRACE("receiver set " + std::to_string(s));

@@ -28,11 +28,31 @@ enum class DirectMode : uint8_t {
 };
 
 // How the fixture hangs. Beam axis at pan = tilt = 0: down (-z) when hanging,
-// up (+z) when standing. Tilt turns the beam towards +x of the panned frame;
-// pan turns about +z, counter-clockwise seen from above:
+// up (+z) when standing, horizontal out of the wall (+x before the yaw) on a
+// wall. Tilt turns the beam towards +x of the panned frame; pan turns about
+// +z, counter-clockwise seen from above:
 //   hanging:  axis = (sin t cos p, sin t sin p, -cos t)
 //   standing: axis = (sin t cos p, sin t sin p, +cos t)
-enum class Mounting : uint8_t { kHanging = 0, kStanding = 1 };
+//   wall:     axis = (cos t, -sin t sin p, -sin t cos p)   (pan about the wall's
+//             normal, tilt towards the floor at pan 0)
+// then the yaw turns all of it about world +z (counter-clockwise from above).
+//
+// The fixture frame, in which the photometric angles of a direction are
+// measured (photometric type C, as IES and EULUMDAT files define them):
+//   axis = gamma 0; c0 = the C 0 direction at gamma 90; c90 = C 90 at gamma 90,
+//   with c0 x c90 = -axis (C grows counter-clockwise seen from behind the
+//   fixture looking along its beam: from above a hanging one). With
+//   ct, st, cp, sp the cos and sin of tilt and pan, before roll and yaw:
+//     hanging:  c0 = (ct cp, ct sp, st),   c90 = (-sp, cp, 0)
+//     standing: c0 = (ct cp, ct sp, -st),  c90 = (sp, -cp, 0)
+//     wall:     the hanging vectors v mapped to (-v.z, -v.y, -v.x)
+//   The roll turns c0 towards c90 about the axis (c0' = cos r c0 + sin r c90,
+//   c90' = -sin r c0 + cos r c90): the fixture turned in its yoke / on its
+//   bracket by r degrees of C. The yaw turns the three about world +z.
+//   A direction d has gamma = angle(d, axis) and C = atan2(d.c90, d.c0).
+//   The SH coefficients of a LID are taken in the right-handed frame
+//   (x, y, z) = (c0, c90, -axis).
+enum class Mounting : uint8_t { kHanging = 0, kStanding = 1, kWall = 2 };
 
 struct BakeMesh {
   std::vector<int32_t> positions;   // Q16.16 metres, xyz per vertex
@@ -53,10 +73,23 @@ struct BakeGrid {
   uint32_t point_count() const { return static_cast<uint32_t>(points.size() / 3); }
 };
 
-// A luminous intensity distribution, rotationally symmetric about the beam
-// axis, sampled at uniform gamma steps from 0 to 180 degrees inclusive.
+// A luminous intensity distribution. `candela` is the rotationally symmetric
+// part, sampled at uniform gamma steps from 0 to 180 degrees inclusive: the
+// whole LID of an axisymmetric luminaire (Legendre weights, Dobashi Eq. 19,
+// and the exact direct term by gamma alone). A luminaire that is not
+// axisymmetric (a photometric file with C planes) also has its full table
+// over (C, gamma) in the fixture frame (see Mounting), with the file's
+// symmetry expanded to the full circle and its own angles, which the exact
+// direct term interpolates bilinearly; and the real-SH coefficients of that
+// table in the fixture frame, which the runtime rotates to the aim (then
+// `candela` is the average over C, kept for display and edits).
 struct BakeLid {
   std::vector<int64_t> candela;  // Q48.16 cd, sample k at gamma = 180 * k / (n - 1) degrees
+  std::vector<int32_t> c_deg;      // Q16.16 degrees: 0 first, 360 last, strictly increasing
+  std::vector<int32_t> gamma_deg;  // Q16.16 degrees: strictly increasing within [0, 180]
+  std::vector<int64_t> table;      // Q48.16 cd, [plane * gammas + g]; plane at 360 = plane at 0
+  std::vector<int64_t> sh;         // Q48.16 cd, (N+1)^2 coefficients, ShIndex order
+  bool axisymmetric() const { return c_deg.empty(); }
 };
 
 // Per luminaire and receiver set.
@@ -80,6 +113,12 @@ struct BakeLuminaire {
   uint8_t use_sigma = 1;             // damp the Legendre series with sigma(N, l) (Dobashi Eq. 12-13)
   int32_t default_pan = 0;           // Q16.16 degrees
   int32_t default_tilt = 0;          // Q16.16 degrees
+  int32_t yaw = 0;                   // Q16.16 degrees, turn of the base about world +z
+  int32_t roll = 0;                  // Q16.16 degrees, default roll about the beam axis
+  // Console ranges (Q16.16 degrees): a 16-bit pan or tilt value v means
+  // (v - 32768) / 65536 x range, so 32768 is home (0) and the range is centred.
+  int32_t pan_range = 540 << 16;
+  int32_t tilt_range = 270 << 16;
   int16_t default_dimmer = 32767;    // Q1.15
   int16_t default_rgb[3] = {32767, 32767, 32767};  // Q1.15
   BakeLid lid;

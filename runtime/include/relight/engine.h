@@ -31,6 +31,7 @@ struct FixtureState {
   Q16_16 tilt_deg;
   Q1_15 dimmer;      // 0 .. 1
   Q1_15 rgb[3];      // 0 .. 1 each
+  Q16_16 roll_deg;   // about the beam axis (bake.h); moves only LIDs that are not axisymmetric
 };
 
 class Engine {
@@ -58,6 +59,33 @@ class Engine {
   Status SetPanTilt(int luminaire, Q16_16 pan_deg, Q16_16 tilt_deg);
   Status SetDimmer(int luminaire, Q1_15 level);
   Status SetColour(int luminaire, Q1_15 r, Q1_15 g, Q1_15 b);
+  // The fixture turned about its beam axis (bake.h "fixture frame"); wraps.
+  Status SetRoll(int luminaire, Q16_16 roll_deg);
+  // Console-style 16-bit pan and tilt (coarse << 8 | fine), spread over the
+  // luminaire's pan and tilt ranges (bake.h), 32768 = home (0 degrees).
+  Status SetPanTilt16(int luminaire, uint16_t pan, uint16_t tilt);
+  // Aims the beam at a world point (Q16.16 metres; Dobashi 4.2 with a point
+  // picked in the rendered view, relight/pick.h): of the pan/tilt pairs that
+  // reach it, the one inside the luminaire's console ranges nearest its
+  // current aim. kInvalidArgument for a bad index or the luminaire's own
+  // position, kOutOfRange when the ranges cannot reach the point.
+  Status AimAt(int luminaire, const int32_t target_q16[3]);
+
+  // Beam editing (Dobashi 4.1) of an axisymmetric LID, sampled at M+1 angles
+  // gamma_k = 180 k / M (bake.h). Moving sample k (a control point, as in the
+  // paper's Eq. 21) updates the Legendre weights by its increment alone and
+  // the exact direct term reads the new sample; the luminaire is rebuilt at
+  // the next Update(). No allocation. kInvalidArgument for a bad index,
+  // kOutOfRange for candela outside [0, 2^24), kUnsupported for a LID with
+  // C planes (its SH coefficients come from the bake).
+  Status SetLidSample(int luminaire, int k, Q48_16 candela);
+  // The LID becomes the polyline through `count` control points (gamma from
+  // 0, strictly increasing, at most 180; 0 past the last): every sample that
+  // changes is one Eq. 21 update.
+  Status SetLidControlPoints(int luminaire, const Q16_16* gamma_deg, const Q48_16* candela,
+                             int count);
+  // The current samples (Q48.16 cd) and their count, or nullptr.
+  const int64_t* lid_samples(int luminaire, int* count) const;
   FixtureState state(int luminaire) const;
 
   // Brings the outputs up to date with the state. Integer-only, no allocation.

@@ -20,17 +20,36 @@
 
 namespace relight::baker {
 
+// Radiosity solver. Dense: every patch pair's form factor and an LU
+// factorisation per channel (exact, O(n^2) memory, O(n^3) time, at most
+// 20000 patches). Hierarchical: Hanrahan et al.'s BF-refined links over a
+// quadtree per surface and Gauss-Seidel sweeps (near-linear). Auto: dense
+// up to kAutoDenseMaxPatches patches, hierarchical above.
+enum class SolverKind { kAuto, kDense, kHierarchical };
+constexpr size_t kAutoDenseMaxPatches = 4000;
+
 struct BakeOptions {
   std::optional<DirectModeKind> direct_mode;  // overrides every luminaire's mode when set
   int threads = 0;                            // 0 = all cores
   int lid_samples = 720;                      // M: gamma steps over 0..180 degrees (0.25 degree)
   bool progress = false;                      // draw a progress bar on stderr
+  SolverKind solver = SolverKind::kAuto;
+  // Hierarchical: a link is split while F times its source's estimated
+  // exitance exceeds this fraction of the brightest exitance (BF refinement);
+  // 0 links every pair of patches (the dense solver's form factors).
+  double link_epsilon = 1e-3;
+  // Hierarchical: sweeps stop when the estimated remaining change of the
+  // exitance is below this fraction of each right-hand side's peak.
+  double solve_tolerance = 1e-4;
 };
 
 struct BakeReport {
   size_t patches = 0, vertices = 0, triangles = 0, grid_points = 0;
   size_t luminaires = 0, sh_terms = 0;  // terms summed over luminaires
   double form_factor_seconds = 0, solve_seconds = 0, total_seconds = 0;
+  SolverKind solver = SolverKind::kDense;  // the one used (never kAuto)
+  size_t nodes = 0, links = 0;             // hierarchical: quadtree nodes and links
+  int sweeps = 0;                          // hierarchical: most Gauss-Seidel sweeps of a solve
 };
 
 // One fixture's state for a reference solve (same meaning as the runtime's).
@@ -38,6 +57,7 @@ struct FixtureSetting {
   double pan_deg = 0, tilt_deg = 0;
   double dimmer = 1;
   Rgb colour{1, 1, 1};
+  std::optional<double> roll_deg{};  // about the beam axis; unset: the scene's roll
 };
 
 struct ReferenceResult {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -38,9 +39,13 @@ struct Surface {
   Rgb reflectance{0.5, 0.5, 0.5};  // diffuse, each in [0, 1)
 };
 
-enum class LidKind { kIsotropic, kCosPower, kTable };
+enum class LidKind { kIsotropic, kCosPower, kTable, kCGamma };
 
-// Rotationally symmetric luminous intensity distribution about the beam axis.
+struct PhotometricTable;  // relight/baker/photometric_file.h
+
+// Luminous intensity distribution: rotationally symmetric about the beam axis
+// (isotropic, cos^k, table, and photometric files with one C plane), or a
+// photometric file's full table over (C, gamma) (kCGamma).
 struct Lid {
   LidKind kind = LidKind::kIsotropic;
   double peak_cd = 1000.0;        // isotropic and cos^k: intensity on the axis, candela
@@ -48,12 +53,22 @@ struct Lid {
   double spread_deg = 90.0;       // cos^k: zero beyond this gamma (Dobashi Eq. 11)
   std::vector<double> gamma_deg;  // table: strictly increasing, first 0
   std::vector<double> candela;    // table: same length, >= 0
+  // kCGamma: the file's table (shared, read-only). For a file path in messages.
+  std::shared_ptr<const PhotometricTable> file;
+  std::string file_path;
   // Intensity in candela at angle gamma (degrees) from the axis. Table:
-  // linear between control points, 0 past the last one.
+  // linear between control points, 0 below the first and past the last one.
+  // kCGamma: the average over C (the axisymmetric part of the beam).
   double Evaluate(double gamma_deg) const;
+  // Intensity at photometric angles (C, gamma) in degrees (photometric_file.h);
+  // the same as Evaluate(gamma) for the axisymmetric kinds.
+  double Evaluate(double c_deg, double gamma_deg) const;
+  bool axisymmetric() const { return kind != LidKind::kCGamma; }
 };
 
-enum class MountingKind { kHanging, kStanding };
+// bake.h gives the frames: hanging (beam down at rest), standing (beam up),
+// wall (beam out of the wall, horizontal, at rest).
+enum class MountingKind { kHanging, kStanding, kWall };
 enum class DirectModeKind { kExact, kAllInSh };
 
 struct Luminaire {
@@ -61,6 +76,9 @@ struct Luminaire {
   Vec3 position{0, 0, 0};
   MountingKind mounting = MountingKind::kHanging;
   double pan_deg = 0, tilt_deg = 0;  // default aim (see runtime/include/relight/bake.h for the convention)
+  double yaw_deg = 0;                // turn of the base about world z (a wall: the way it faces)
+  double roll_deg = 0;               // turn about the beam axis, towards increasing C
+  double pan_range_deg = 540, tilt_range_deg = 270;  // console 16-bit ranges, centred on 0
   double dimmer = 1.0;               // default, 0..1
   Rgb colour{1, 1, 1};               // default, each 0..1
   int sh_degree = 8;                 // N, 0..16

@@ -1,0 +1,239 @@
+#include "hierarchy_solve.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "parallel_for.h"
+
+namespace relight::baker {
+namespace {
+
+// Columns per block: a block's three node arrays stay within the shared
+// cache for tens of thousands of nodes, and a luminaire's terms split into
+// several blocks so both cores get work.
+constexpr Eigen::Index kMaxBlockColumns = 32;
+
+using Row = Eigen::Map<Eigen::ArrayXd>;
+using ConstRow = Eigen::Map<const Eigen::ArrayXd>;
+
+}  // namespace
+
+HierarchicalSolver::HierarchicalSolver(Hierarchy hierarchy, std::vector<HierarchyLink> links,
+                                       const std::vector<Rgb>& rho,
+                                       const HierarchicalSolveOptions& options)
+    : hierarchy_(std::move(hierarchy)), links_(std::move(links)), options_(options) {
+  const auto n_patches = static_cast<Eigen::Index>(rho.size());
+  for (int c = 0; c < 3; ++c) {
+    rho_[c].resize(n_patches);
+    for (Eigen::Index i = 0; i < n_patches; ++i) rho_[c](i) = rho[static_cast<size_t>(i)][c];
+  }
+  for (int c = 0; c < 3; ++c) {
+    same_as_[c] = c;
+    for (int d = 0; d < c; ++d) {
+      if (same_as_[d] == d && rho_[d] == rho_[c]) {
+        same_as_[c] = d;
+        break;
+      }
+    }
+  }
+  const size_t n = hierarchy_.nodes.size();
+  gather_offsets_.assign(n + 1, 0);
+  for (const HierarchyLink& l : links_) {
+    if (l.f_pq > 0) ++gather_offsets_[l.p + 1];
+    if (l.f_qp > 0) ++gather_offsets_[l.q + 1];
+  }
+  for (size_t k = 0; k < n; ++k) gather_offsets_[k + 1] += gather_offsets_[k];
+  gather_source_.resize(gather_offsets_[n]);
+  gather_factor_.resize(3 * gather_offsets_[n]);
+  std::vector<uint32_t> fill(gather_offsets_.begin(), gather_offsets_.end() - 1);
+  const auto add = [&](uint32_t to, uint32_t from, double f, const std::array<double, 2>& g) {
+    const uint32_t e = fill[to]++;
+    gather_source_[e] = from;
+    gather_factor_[3 * e] = f;
+    gather_factor_[3 * e + 1] = g[0];
+    gather_factor_[3 * e + 2] = g[1];
+  };
+  for (const HierarchyLink& l : links_) {
+    if (l.f_pq > 0) add(l.p, l.q, l.f_pq, l.g_pq);
+    if (l.f_qp > 0) add(l.q, l.p, l.f_qp, l.g_qp);
+  }
+  child_weight_.assign(n, 0);
+  centre_uv_.resize(n);
+  for (size_t k = 0; k < n; ++k) {
+    const HierarchyNode& node = hierarchy_.nodes[k];
+    if (node.parent != kNoNode) {
+      child_weight_[k] = node.area_m2 / hierarchy_.nodes[node.parent].area_m2;
+    }
+    centre_uv_[k] = hierarchy_.PlaneCoords(node.surface, node.centre);
+  }
+}
+
+std::vector<HierarchicalSolver::Task> HierarchicalSolver::Tasks(const std::vector<int>& channels,
+                                                                Eigen::Index columns) const {
+  std::vector<Task> tasks;
+  if (columns == 0) return tasks;
+  const Eigen::Index blocks = (columns + kMaxBlockColumns - 1) / kMaxBlockColumns;
+  const Eigen::Index width = (columns + blocks - 1) / blocks;
+  for (int c : channels) {
+    for (Eigen::Index col = 0; col < columns; col += width) {
+      tasks.push_back({c, col, std::min(width, columns - col)});
+    }
+  }
+  return tasks;
+}
+
+void HierarchicalSolver::RunTasks(const std::vector<Task>& tasks, const Eigen::MatrixXd& rhs,
+                                  bool rhs_is_illuminance,
+                                  std::array<Eigen::MatrixXd, 3>* out) const {
+  // Each task writes its own columns of one channel's result: no locks.
+  ParallelFor(tasks.size(), options_.threads, [&](size_t k, int) {
+    SolveBlock(tasks[k], rhs, rhs_is_illuminance, &(*out)[tasks[k].channel]);
+  });
+}
+
+Eigen::MatrixXd HierarchicalSolver::Solve(int channel, const Eigen::MatrixXd& emitted) const {
+  std::array<Eigen::MatrixXd, 3> out;
+  out[channel].resize(emitted.rows(), emitted.cols());
+  RunTasks(Tasks({channel}, emitted.cols()), emitted, false, &out);
+  return std::move(out[channel]);
+}
+
+Eigen::MatrixXd HierarchicalSolver::SolveExitance(int channel,
+                                                  const Eigen::MatrixXd& illuminance_lux) const {
+  std::array<Eigen::MatrixXd, 3> out;
+  out[channel].resize(illuminance_lux.rows(), illuminance_lux.cols());
+  RunTasks(Tasks({channel}, illuminance_lux.cols()), illuminance_lux, true, &out);
+  return std::move(out[channel]);
+}
+
+std::array<Eigen::MatrixXd, 3> HierarchicalSolver::SolveExitanceRgb(
+    const Eigen::MatrixXd& illuminance_lux) const {
+  std::vector<int> distinct;
+  for (int c = 0; c < 3; ++c)
+    if (same_as_[c] == c) distinct.push_back(c);
+  std::array<Eigen::MatrixXd, 3> out;
+  for (int c : distinct) out[c].resize(illuminance_lux.rows(), illuminance_lux.cols());
+  RunTasks(Tasks(distinct, illuminance_lux.cols()), illuminance_lux, true, &out);
+  for (int c = 0; c < 3; ++c)
+    if (same_as_[c] != c) out[c] = out[same_as_[c]];
+  return out;
+}
+
+void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs,
+                                    bool rhs_is_illuminance, Eigen::MatrixXd* out) const {
+  const std::vector<HierarchyNode>& nodes = hierarchy_.nodes;
+  const size_t n = nodes.size();
+  const Eigen::Index w = task.width;
+  const size_t ws = static_cast<size_t>(w);
+  const Eigen::VectorXd& rho = rho_[task.channel];
+  // Node-major blocks: row k of a block is node k's w columns. g0, gu, gv:
+  // gathered irradiance a + b u + c v over the node (surface frame, m).
+  std::vector<double> s(n * ws, 0.0), b(n * ws, 0.0);
+  std::vector<double> g0(n * ws, 0.0), gu(n * ws, 0.0), gv(n * ws, 0.0);
+  const auto row = [ws](std::vector<double>& v, size_t k) { return Row(v.data() + k * ws, ws); };
+  const auto crow = [ws](const std::vector<double>& v, size_t k) {
+    return ConstRow(v.data() + k * ws, ws);
+  };
+  for (size_t k = 0; k < n; ++k) {
+    if (!nodes[k].leaf()) continue;
+    const auto i = static_cast<Eigen::Index>(nodes[k].patch);
+    const double scale = rhs_is_illuminance ? rho(i) : 1.0;
+    for (Eigen::Index j = 0; j < w; ++j) s[k * ws + j] = scale * rhs(i, task.column + j);
+  }
+  b = s;
+  const auto pull = [&](size_t begin, size_t end) {
+    // Parents come before children: in reverse, children are done first.
+    for (size_t k = end; k-- > begin;) {
+      const HierarchyNode& node = nodes[k];
+      if (node.leaf()) continue;
+      Row out_row = row(b, k);
+      out_row.setZero();
+      for (uint32_t c = node.first_child; c < node.first_child + node.child_count; ++c)
+        out_row += child_weight_[c] * crow(b, c);
+    }
+  };
+  const size_t surfaces = hierarchy_.surface_count();
+  for (size_t sf = 0; sf < surfaces; ++sf)
+    pull(hierarchy_.surface_begin[sf], hierarchy_.surface_begin[sf + 1]);
+
+  Eigen::ArrayXd change(w), peak(w);
+  double previous = 0;
+  int sweep = 0;
+  while (sweep < options_.max_sweeps) {
+    ++sweep;
+    change.setZero();
+    peak.setZero();
+    // Gauss-Seidel over surfaces: each surface gathers from the latest
+    // exitance of all the others (a planar surface never sees itself).
+    for (size_t sf = 0; sf < surfaces; ++sf) {
+      const size_t begin = hierarchy_.surface_begin[sf], end = hierarchy_.surface_begin[sf + 1];
+      for (size_t k = begin; k < end; ++k) {
+        Row a = row(g0, k);
+        a.setZero();
+        const uint32_t e0 = gather_offsets_[k], e1 = gather_offsets_[k + 1];
+        if (nodes[k].leaf()) {
+          for (uint32_t e = e0; e < e1; ++e)
+            a += gather_factor_[3 * e] * crow(b, gather_source_[e]);
+          continue;
+        }
+        Row du = row(gu, k), dv = row(gv, k);
+        du.setZero();
+        dv.setZero();
+        for (uint32_t e = e0; e < e1; ++e) {
+          const ConstRow src = crow(b, gather_source_[e]);
+          a += gather_factor_[3 * e] * src;
+          du += gather_factor_[3 * e + 1] * src;
+          dv += gather_factor_[3 * e + 2] * src;
+        }
+        // About the surface's origin rather than the node's centre, so
+        // that a child can add its parent's coefficients as they are.
+        a -= centre_uv_[k][0] * du + centre_uv_[k][1] * dv;
+      }
+      // Push: irradiance gathered at a node reaches all of its area; a leaf
+      // takes the linear irradiance at its centre (its mean over the leaf).
+      for (size_t k = begin + 1; k < end; ++k) {
+        const size_t parent = nodes[k].parent;
+        row(g0, k) += crow(g0, parent);
+        if (nodes[k].leaf()) {
+          row(g0, k) += centre_uv_[k][0] * crow(gu, parent) + centre_uv_[k][1] * crow(gv, parent);
+        } else {
+          row(gu, k) += crow(gu, parent);
+          row(gv, k) += crow(gv, parent);
+        }
+      }
+      for (size_t k = begin; k < end; ++k) {
+        if (!nodes[k].leaf()) continue;
+        const double r = rho(static_cast<Eigen::Index>(nodes[k].patch));
+        const Eigen::ArrayXd updated = crow(s, k) + r * crow(g0, k);
+        Row bk = row(b, k);
+        change = change.max((updated - bk).abs());
+        peak = peak.max(updated.abs());
+        bk = updated;
+      }
+      pull(begin, end);
+    }
+    // Per column relative change; columns that are all but zero next to
+    // the block's largest do not hold the iteration up.
+    const double block_peak = peak.maxCoeff();
+    double worst = 0;
+    for (Eigen::Index j = 0; j < w; ++j) {
+      if (peak(j) > 1e-12 * block_peak) worst = std::max(worst, change(j) / peak(j));
+    }
+    if (worst == 0) break;
+    if (sweep >= 2) {
+      const double rate = std::clamp(worst / previous, 0.0, 0.99);
+      if (worst * rate / (1 - rate) < options_.tolerance) break;
+    }
+    previous = worst;
+  }
+  int seen = max_sweeps_used_.load();
+  while (sweep > seen && !max_sweeps_used_.compare_exchange_weak(seen, sweep)) {
+  }
+  for (size_t k = 0; k < n; ++k) {
+    if (!nodes[k].leaf()) continue;
+    const auto i = static_cast<Eigen::Index>(nodes[k].patch);
+    for (Eigen::Index j = 0; j < w; ++j) (*out)(i, task.column + j) = b[k * ws + j];
+  }
+}
+
+}  // namespace relight::baker

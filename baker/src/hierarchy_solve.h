@@ -1,0 +1,81 @@
+// The radiosity system on the hierarchy (Hanrahan, Salzman & Aupperle 1991):
+//   M = S + rho (K M),  K = push . links . pull
+// solved by Gauss-Seidel sweeps over the surfaces' quadtrees: per surface,
+// every node gathers irradiance over its links (F times the source node's
+// exitance, varying linearly over the node by the links' gradients), the
+// gathered irradiance is pushed down to the leaves (evaluated at each leaf's
+// centre, which is its mean), leaves take M = S + rho E_gathered, and
+// exitance is pulled up as area-weighted averages. Every right-hand side
+// (all SH terms of a luminaire, Dobashi Eq. 17) goes through one sweep as a
+// dense block of columns, since the links (F) are shared by all of them.
+// Columns are split into blocks that run on separate threads.
+// Thread safety: Solve*() are const and may run concurrently.
+#pragma once
+
+#include <Eigen/Dense>
+#include <array>
+#include <atomic>
+#include <vector>
+
+#include "hierarchy.h"
+#include "hierarchy_links.h"
+#include "relight/baker/scene.h"
+
+namespace relight::baker {
+
+struct HierarchicalSolveOptions {
+  // A sweep stops the iteration when the estimated remaining change of every
+  // column (the last change times r / (1 - r), r the observed contraction),
+  // relative to that column's largest leaf exitance, is below this.
+  double tolerance = 1e-5;
+  int max_sweeps = 500;
+  int threads = 0;  // 0 = every core
+};
+
+class HierarchicalSolver {
+ public:
+  // rho: per mesh patch RGB reflectance.
+  HierarchicalSolver(Hierarchy hierarchy, std::vector<HierarchyLink> links,
+                     const std::vector<Rgb>& rho, const HierarchicalSolveOptions& options);
+
+  // Solves M = S + rho_c K M for the emitted exitance S (patches x k); M is
+  // the total exitance (lm/m^2) per patch.
+  Eigen::MatrixXd Solve(int channel, const Eigen::MatrixXd& emitted) const;
+  // Exitance M (lm/m^2) from direct illuminance E (lux): S = rho_c E.
+  Eigen::MatrixXd SolveExitance(int channel, const Eigen::MatrixXd& illuminance_lux) const;
+  // All three channels at once (channels with equal reflectances solved once).
+  std::array<Eigen::MatrixXd, 3> SolveExitanceRgb(const Eigen::MatrixXd& illuminance_lux) const;
+
+  const Eigen::VectorXd& reflectance(int channel) const { return rho_[channel]; }
+  const Hierarchy& hierarchy() const { return hierarchy_; }
+  const std::vector<HierarchyLink>& links() const { return links_; }
+  // Most sweeps any column block needed so far.
+  int max_sweeps_used() const { return max_sweeps_used_.load(); }
+
+ private:
+  struct Task {
+    int channel;
+    Eigen::Index column, width;
+  };
+  void RunTasks(const std::vector<Task>& tasks, const Eigen::MatrixXd& rhs, bool rhs_is_illuminance,
+                std::array<Eigen::MatrixXd, 3>* out) const;
+  void SolveBlock(const Task& task, const Eigen::MatrixXd& rhs, bool rhs_is_illuminance,
+                  Eigen::MatrixXd* out) const;
+  std::vector<Task> Tasks(const std::vector<int>& channels, Eigen::Index columns) const;
+
+  Hierarchy hierarchy_;
+  std::vector<HierarchyLink> links_;
+  HierarchicalSolveOptions options_;
+  std::array<Eigen::VectorXd, 3> rho_;
+  std::array<int, 3> same_as_{};  // channel whose reflectances this one repeats (itself if none)
+  // Gather lists: node n gathers from gather_source[k] with factor
+  // gather_factor[k] (3 per entry: mean, d/du, d/dv over n),
+  // k in [gather_offsets[n], gather_offsets[n + 1]).
+  std::vector<uint32_t> gather_offsets_, gather_source_;
+  std::vector<double> gather_factor_;
+  std::vector<double> child_weight_;  // area of a node over its parent's
+  std::vector<std::array<double, 2>> centre_uv_;  // per node, in its surface's frame
+  mutable std::atomic<int> max_sweeps_used_{0};
+};
+
+}  // namespace relight::baker
