@@ -8,6 +8,7 @@
 #include <cmath>
 #include <vector>
 
+#include "test_scenes.h"
 #include "baker_core.h"
 #include "hierarchy.h"
 #include "hierarchy_links.h"
@@ -27,43 +28,7 @@ using namespace radiosity_vec;
 
 // --- scenes -------------------------------------------------------------------
 
-Surface Quad(const char* name, Vec3 a, Vec3 b, Vec3 c, Vec3 d, Rgb rho = {0.5, 0.5, 0.5}) {
-  Surface s;
-  s.name = name;
-  s.corners = {a, b, c, d};
-  s.reflectance = rho;
-  return s;
-}
-
-Surface Triangle(const char* name, Vec3 a, Vec3 b, Vec3 c, Rgb rho = {0.5, 0.5, 0.5}) {
-  Surface s;
-  s.name = name;
-  s.corners = {a, b, c};
-  s.reflectance = rho;
-  return s;
-}
-
-// The six faces of an axis-aligned box, CCW seen from inside.
-std::vector<Surface> InwardBox(Vec3 lo, Vec3 hi, Rgb floor_rho, Rgb wall_rho, Rgb ceiling_rho) {
-  const double x0 = lo[0], y0 = lo[1], z0 = lo[2], x1 = hi[0], y1 = hi[1], z1 = hi[2];
-  return {
-      Quad("floor", {x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0}, floor_rho),
-      Quad("ceiling", {x0, y0, z1}, {x0, y1, z1}, {x1, y1, z1}, {x1, y0, z1}, ceiling_rho),
-      Quad("wall -x", {x0, y0, z0}, {x0, y1, z0}, {x0, y1, z1}, {x0, y0, z1}, wall_rho),
-      Quad("wall +x", {x1, y0, z0}, {x1, y0, z1}, {x1, y1, z1}, {x1, y1, z0}, wall_rho),
-      Quad("wall -y", {x0, y0, z0}, {x0, y0, z1}, {x1, y0, z1}, {x1, y0, z0}, wall_rho),
-      Quad("wall +y", {x0, y1, z0}, {x1, y1, z0}, {x1, y1, z1}, {x0, y1, z1}, wall_rho),
-  };
-}
-
-Scene ClosedBox(double patch_size_m, Rgb rho) {
-  Scene s;
-  s.name = "closed box";
-  s.path = "closed_box.toml";
-  s.patch_size_m = patch_size_m;
-  s.surfaces = InwardBox({0, 0, 0}, {1, 1, 1}, rho, rho, rho);
-  return s;
-}
+using namespace test_scenes;
 
 // A room with a table (it shadows the floor), coloured surfaces, a spot and
 // a grid: small enough for the dense solver, with occlusion and corners.
