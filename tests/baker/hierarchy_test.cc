@@ -56,15 +56,7 @@ Scene Room(double patch_size_m) {
   l.lid.spread_deg = 80;
   l.lid.peak_cd = 500;
   s.luminaires = {l};
-  CalcGrid g;
-  g.name = "workplane";
-  for (int i = 0; i < 5; ++i) {
-    for (int j = 0; j < 4; ++j) {
-      g.points.push_back({0.3 + 0.6 * i, 0.3 + 0.6 * j, 0.8});
-      g.normals.push_back({0, 0, 1});
-    }
-  }
-  s.grids = {g};
+  s.grids = {WorkplaneGrid()};
   return s;
 }
 

@@ -462,14 +462,7 @@ Scene Room() {
     l.lid.candela.push_back(PolynomialBeam(k * 0.01));
   }
   s.luminaires = {l};
-  CalcGrid g;
-  g.name = "workplane";
-  for (int i = 0; i < 5; ++i) {
-    for (int j = 0; j < 4; ++j) {
-      g.points.push_back({0.3 + 0.6 * i, 0.3 + 0.6 * j, 0.8});
-      g.normals.push_back({0, 0, 1});
-    }
-  }
+  CalcGrid g = WorkplaneGrid();
   g.columns = 5;
   g.rows = 4;
   s.grids = {g};

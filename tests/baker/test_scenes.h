@@ -46,4 +46,17 @@ inline Scene ClosedBox(double patch_size_m, Rgb rho) {
   return s;
 }
 
+// A 5 x 4 work plane at 0.8 m over a 3 x 2.4 m area, facing up.
+inline CalcGrid WorkplaneGrid() {
+  CalcGrid g;
+  g.name = "workplane";
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      g.points.push_back({0.3 + 0.6 * i, 0.3 + 0.6 * j, 0.8});
+      g.normals.push_back({0, 0, 1});
+    }
+  }
+  return g;
+}
+
 }  // namespace relight::baker::test_scenes
