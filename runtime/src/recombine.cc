@@ -34,23 +34,18 @@ inline void FinishBlock(const int64_t* acc, uint32_t elements, int shift, int32_
 }
 
 // The vector path: AVX2 multiply-adds over the active terms, blocks of
-// scratch_len / 6 receivers (two accumulators per element).
+// scratch_len / 3 receivers (one exact int64 sum per element).
 void RecombineVector(const int16_t* basis, uint32_t receiver_count, const uint16_t* terms,
                      uint32_t term_count, const int32_t* k, int shift, int64_t* scratch,
                      uint32_t scratch_len, int32_t* out) {
-  const uint32_t block = scratch_len / 6;
+  const uint32_t block = scratch_len / 3;
   TermPairVectors pairs[kMaxTermPairs];  // 56 KiB of stack, built once per call
   BuildTermPairsAvx2(terms, term_count, k, pairs);
   for (uint32_t r0 = 0; r0 < receiver_count; r0 += block) {
     const uint32_t n = receiver_count - r0 < block ? receiver_count - r0 : block;
-    int64_t* acc_hi = scratch;
-    int64_t* acc_lo = scratch + 3 * n;
-    for (uint32_t i = 0; i < 6 * n; ++i) scratch[i] = 0;
     AccumulateTermsAvx2(basis + static_cast<size_t>(r0) * 3, static_cast<uint64_t>(receiver_count) * 3, terms,
-                        term_count, k, pairs, 3 * n, acc_hi, acc_lo);
-    // acc = acc_hi * 2^12 + acc_lo exactly (|acc_hi| < 289 * 2^27, so no overflow).
-    for (uint32_t i = 0; i < 3 * n; ++i) acc_lo[i] += acc_hi[i] * 4096;
-    FinishBlock(acc_lo, 3 * n, shift, out + static_cast<size_t>(r0) * 3);
+                        term_count, k, pairs, 3 * n, scratch);
+    FinishBlock(scratch, 3 * n, shift, out + static_cast<size_t>(r0) * 3);
   }
 }
 
@@ -64,7 +59,7 @@ uint32_t RecombineQ12(const int16_t* basis, uint32_t term_count, uint32_t receiv
   RELIGHT_CHECK(term_count <= static_cast<uint32_t>(ShTermCount(kMaxShDegree)));
   uint16_t active[ShTermCount(kMaxShDegree)];
   uint32_t used_terms = 0;
-  bool vector_ok = scratch_len >= 6;
+  bool vector_ok = true;
   constexpr int32_t kVectorLimit = int32_t{1} << kVectorMultiplierBits;
   for (uint32_t t = 0; t < term_count; ++t) {
     if ((k[3 * t] | k[3 * t + 1] | k[3 * t + 2]) == 0) continue;

@@ -58,14 +58,12 @@ __attribute__((target("avx2"))) PairVectors MakePair(const int32_t* ka, const in
   return v;
 }
 
-// acc[e0 + offsets[0..3]] and acc[e0 + offsets[4..7]] += the 8 int32 lanes of s.
-__attribute__((target("avx2"))) inline void Widen(__m256i s, int64_t* acc, int first, int second) {
-  const __m256i a = _mm256_cvtepi32_epi64(_mm256_castsi256_si128(s));
-  const __m256i b = _mm256_cvtepi32_epi64(_mm256_extracti128_si256(s, 1));
-  __m256i* pa = reinterpret_cast<__m256i*>(acc + first);
-  __m256i* pb = reinterpret_cast<__m256i*>(acc + second);
-  _mm256_storeu_si256(pa, _mm256_add_epi64(_mm256_loadu_si256(pa), a));
-  _mm256_storeu_si256(pb, _mm256_add_epi64(_mm256_loadu_si256(pb), b));
+// Widens four int32 lanes (the low or high 128 bits of s) to int64.
+__attribute__((target("avx2"))) inline __m256i Widen(__m128i s) { return _mm256_cvtepi32_epi64(s); }
+
+// acc += hi * 2^12 + lo for four int64 lanes, from four int32 lanes each.
+__attribute__((target("avx2"))) inline __m256i AddHalves(__m256i acc, __m128i hi, __m128i lo) {
+  return _mm256_add_epi64(acc, _mm256_add_epi64(_mm256_slli_epi64(Widen(hi), 12), Widen(lo)));
 }
 
 constexpr int kPairsPerWiden = 4;  // 8 terms summed in int32 before widening (< 2^30)
@@ -84,51 +82,76 @@ __attribute__((target("avx2"))) void BuildTermPairsAvx2(const uint16_t* terms, u
   }
 }
 
+// One pass of G term pairs (G <= 4, 8 terms: the int32 sums cannot overflow)
+// over all 16-element chunks: multiply-adds unrolled over the pairs, then the
+// int32 sums widened as hi * 2^12 + lo and added to acc. The rows of a pass
+// are read side by side, a handful of streams the hardware prefetcher keeps up with.
+template <int G>
+__attribute__((target("avx2"), always_inline)) inline void Pass(const int16_t* const* row_a,
+                                                                const int16_t* const* row_b,
+                                                                const PairVectors* vec, uint32_t chunks,
+                                                                int64_t* acc) {
+  for (uint32_t j = 0; j < chunks; ++j) {
+    const uint32_t e0 = 16 * j;
+    const int phase = static_cast<int>(j % 3);  // 16 = 1 (mod 3)
+    __m256i lo_h = _mm256_setzero_si256(), lo_l = lo_h, hi_h = lo_h, hi_l = lo_h;
+#pragma GCC unroll 4
+    for (int g = 0; g < G; ++g) {
+      const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(row_a[g] + e0));
+      const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(row_b[g] + e0));
+      const __m256i lo = _mm256_unpacklo_epi16(a, b);
+      const __m256i hi = _mm256_unpackhi_epi16(a, b);
+      lo_h = _mm256_add_epi32(lo_h, _mm256_madd_epi16(lo, vec[g].lo_kh[phase]));
+      lo_l = _mm256_add_epi32(lo_l, _mm256_madd_epi16(lo, vec[g].lo_kl[phase]));
+      hi_h = _mm256_add_epi32(hi_h, _mm256_madd_epi16(hi, vec[g].hi_kh[phase]));
+      hi_l = _mm256_add_epi32(hi_l, _mm256_madd_epi16(hi, vec[g].hi_kl[phase]));
+    }
+    // Lanes: lo holds elements e0 + {0..3 | 8..11}, hi e0 + {4..7 | 12..15}.
+    __m256i* out = reinterpret_cast<__m256i*>(acc + e0);
+    _mm256_storeu_si256(out + 0, AddHalves(_mm256_loadu_si256(out + 0), _mm256_castsi256_si128(lo_h),
+                                           _mm256_castsi256_si128(lo_l)));
+    _mm256_storeu_si256(out + 1, AddHalves(_mm256_loadu_si256(out + 1), _mm256_castsi256_si128(hi_h),
+                                           _mm256_castsi256_si128(hi_l)));
+    _mm256_storeu_si256(out + 2, AddHalves(_mm256_loadu_si256(out + 2), _mm256_extracti128_si256(lo_h, 1),
+                                           _mm256_extracti128_si256(lo_l, 1)));
+    _mm256_storeu_si256(out + 3, AddHalves(_mm256_loadu_si256(out + 3), _mm256_extracti128_si256(hi_h, 1),
+                                           _mm256_extracti128_si256(hi_l, 1)));
+  }
+}
+
 __attribute__((target("avx2"))) void AccumulateTermsAvx2(const int16_t* basis, uint64_t stride,
                                                          const uint16_t* terms, uint32_t term_count,
                                                          const int32_t* k, const TermPairVectors* pairs,
-                                                         uint32_t elements, int64_t* acc_hi, int64_t* acc_lo) {
+                                                         uint32_t elements, int64_t* acc) {
   const uint32_t chunks = elements / 16;
   const uint32_t pair_count = (term_count + 1) / 2;
-  for (uint32_t p0 = 0; p0 < pair_count; p0 += kPairsPerWiden) {
-    const uint32_t group = pair_count - p0 < kPairsPerWiden ? pair_count - p0 : kPairsPerWiden;
-    const PairVectors* vec = reinterpret_cast<const PairVectors*>(pairs + p0);
+  const PairVectors* vec = reinterpret_cast<const PairVectors*>(pairs);
+  for (uint32_t e = 0; e < chunks * 16; ++e) acc[e] = 0;
+  for (uint32_t pass = 0; pass < pair_count; pass += kPairsPerWiden) {
+    const uint32_t group = pair_count - pass < kPairsPerWiden ? pair_count - pass : kPairsPerWiden;
     const int16_t* row_a[kPairsPerWiden];
     const int16_t* row_b[kPairsPerWiden];
     for (uint32_t g = 0; g < group; ++g) {
-      const uint32_t ia = 2 * (p0 + g), ib = ia + 1;
+      const uint32_t ia = 2 * (pass + g), ib = ia + 1;
       const uint16_t ta = terms[ia];
       const uint16_t tb = ib < term_count ? terms[ib] : ta;  // times zero (see BuildTermPairsAvx2)
       row_a[g] = basis + ta * stride;
       row_b[g] = basis + tb * stride;
     }
-    for (uint32_t j = 0; j < chunks; ++j) {
-      const uint32_t e0 = 16 * j;
-      const int phase = static_cast<int>(j % 3);  // 16 = 1 (mod 3)
-      __m256i lo_h = _mm256_setzero_si256(), lo_l = lo_h, hi_h = lo_h, hi_l = lo_h;
-      for (uint32_t g = 0; g < group; ++g) {
-        const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(row_a[g] + e0));
-        const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(row_b[g] + e0));
-        const __m256i lo = _mm256_unpacklo_epi16(a, b);
-        const __m256i hi = _mm256_unpackhi_epi16(a, b);
-        lo_h = _mm256_add_epi32(lo_h, _mm256_madd_epi16(lo, vec[g].lo_kh[phase]));
-        lo_l = _mm256_add_epi32(lo_l, _mm256_madd_epi16(lo, vec[g].lo_kl[phase]));
-        hi_h = _mm256_add_epi32(hi_h, _mm256_madd_epi16(hi, vec[g].hi_kh[phase]));
-        hi_l = _mm256_add_epi32(hi_l, _mm256_madd_epi16(hi, vec[g].hi_kl[phase]));
-      }
-      Widen(lo_h, acc_hi + e0, 0, 8);
-      Widen(lo_l, acc_lo + e0, 0, 8);
-      Widen(hi_h, acc_hi + e0, 4, 12);
-      Widen(hi_l, acc_lo + e0, 4, 12);
+    switch (group) {
+      case 4: Pass<4>(row_a, row_b, vec + pass, chunks, acc); break;
+      case 3: Pass<3>(row_a, row_b, vec + pass, chunks, acc); break;
+      case 2: Pass<2>(row_a, row_b, vec + pass, chunks, acc); break;
+      default: Pass<1>(row_a, row_b, vec + pass, chunks, acc); break;
     }
   }
-  // Tail elements (fewer than 16): exact scalar products into acc_lo.
+  // Tail elements (fewer than 16): exact scalar products.
   for (uint32_t e = chunks * 16; e < elements; ++e) {
     int64_t sum = 0;
     for (uint32_t i = 0; i < term_count; ++i) {
       sum += static_cast<int64_t>(basis[terms[i] * stride + e]) * k[3 * terms[i] + e % 3];
     }
-    acc_lo[e] += sum;
+    acc[e] = sum;
   }
 }
 
@@ -137,7 +160,7 @@ __attribute__((target("avx2"))) void AccumulateTermsAvx2(const int16_t* basis, u
 bool CpuHasAvx2() { return false; }
 void BuildTermPairsAvx2(const uint16_t*, uint32_t, const int32_t*, TermPairVectors*) {}
 void AccumulateTermsAvx2(const int16_t*, uint64_t, const uint16_t*, uint32_t, const int32_t*,
-                         const TermPairVectors*, uint32_t, int64_t*, int64_t*) {}
+                         const TermPairVectors*, uint32_t, int64_t*) {}
 
 #endif
 

@@ -26,17 +26,16 @@ inline constexpr uint32_t kMaxTermPairs = (289 + 1) / 2;
 // Builds (term_count + 1) / 2 pair vectors for the given terms and multipliers.
 void BuildTermPairsAvx2(const uint16_t* terms, uint32_t term_count, const int32_t* k, TermPairVectors* pairs);
 
-// acc[e] += sum over the given terms of q_t[e] * k[t*3 + e % 3], exactly, for
+// acc[e] = sum over the given terms of q_t[e] * k[t*3 + e % 3], exactly, for
 // e in [0, elements), where q_t = basis + t * stride (int16 elements). The
 // term list holds indices into the rows/multipliers; |k| < 2^24 for those.
 //
 // Scaling and overflow: each k = kh * 2^12 + kl, kh in [-2^12, 2^12),
 // kl in [0, 2^12). _mm256_madd_epi16 forms q_a*kh_a + q_b*kh_b for a term
 // pair in int32 (< 2 * 2^15 * 2^12 = 2^28); four pairs (8 terms) are summed
-// in int32 (< 2^30) before widening to the int64 accumulators acc_hi/acc_lo,
-// which the caller combines as acc_hi * 2^12 + acc_lo (< 289 * 2^27 * 2^12).
+// in int32 (< 2^30) before widening to int64 as hi * 2^12 + lo; the total
+// stays below 289 * 2^27 * 2^12 * 2 < 2^48.
 void AccumulateTermsAvx2(const int16_t* basis, uint64_t stride, const uint16_t* terms, uint32_t term_count,
-                         const int32_t* k, const TermPairVectors* pairs, uint32_t elements, int64_t* acc_hi,
-                         int64_t* acc_lo);
+                         const int32_t* k, const TermPairVectors* pairs, uint32_t elements, int64_t* acc);
 
 }  // namespace relight
