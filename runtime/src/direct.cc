@@ -9,6 +9,21 @@
 #include "round_shift.h"
 
 namespace relight {
+namespace {
+
+// atan2(sqrt(sin2), cos) for sin2 >= 0 (up to 128 bits) and cos at the same
+// scale: both are scaled down together so the root is a 64-bit one (~31
+// significant bits, far beyond the ~14 bits of a Q1.14 direction), and the
+// angle comes from the interpolated atan table (within 5 BAM).
+Bam AngleFromSinSquared(UInt128 sin2, int64_t cos) {
+  const uint64_t high = static_cast<uint64_t>(sin2 >> 64);
+  const int bits = high != 0 ? 128 - __builtin_clzll(high) : 64 - __builtin_clzll(static_cast<uint64_t>(sin2) | 1);
+  const int shift = bits > 62 ? (bits - 62 + 1) & ~1 : 0;  // even, so the root scales by 2^(shift/2)
+  const int64_t sin_scaled = ISqrt64(static_cast<uint64_t>(sin2 >> shift));
+  return Atan2BamFast(sin_scaled, cos >> (shift / 2));
+}
+
+}  // namespace
 
 void ReflectanceOverPiQ32(const uint16_t* albedo, uint32_t value_count, uint32_t* out_q32) {
   for (uint32_t i = 0; i < value_count; ++i) {
@@ -34,8 +49,7 @@ int64_t DirectIlluminanceQ20(const int16_t direction_q14[3], uint32_t geometry,
   const UInt128 cross2 = static_cast<UInt128>(static_cast<Int128>(cx) * cx) +
                          static_cast<UInt128>(static_cast<Int128>(cy) * cy) +
                          static_cast<UInt128>(static_cast<Int128>(cz) * cz);
-  const int64_t sin_q60 = static_cast<int64_t>(ISqrt128(cross2));
-  const Bam gamma = Atan2Bam(sin_q60, cos_q60);  // 0 .. 2^31, sin >= 0
+  const Bam gamma = AngleFromSinSquared(cross2, cos_q60);  // 0 .. 2^31, sin >= 0
   return IlluminanceQ20(LidIntensityQ16(lid_q16, lid_m, gamma), geometry, geometry_scale);
 }
 
@@ -56,9 +70,8 @@ int64_t DirectIlluminanceTableQ20(const int16_t direction_q14[3], uint32_t geome
   const int64_t x = dot(frame.c0), y = dot(frame.c90), z = dot(frame.axis);
   const UInt128 r2 = static_cast<UInt128>(static_cast<Int128>(x) * x) +
                      static_cast<UInt128>(static_cast<Int128>(y) * y);
-  const int64_t sin_gamma = static_cast<int64_t>(ISqrt128(r2));
-  const Bam gamma = Atan2Bam(sin_gamma, z);  // 0 .. 2^31
-  const Bam c = Atan2Bam(y, x);              // a full turn
+  const Bam gamma = AngleFromSinSquared(r2, z);  // 0 .. 2^31
+  const Bam c = Atan2BamFast(y, x);              // a full turn
   return IlluminanceQ20(LidTableIntensityQ16(table, c, gamma), geometry, geometry_scale);
 }
 

@@ -29,7 +29,8 @@ void ReflectanceOverPiQ32(const uint16_t* albedo, uint32_t value_count, uint32_t
 
 // Illuminance E = I(gamma) * G at each receiver, in Q43.20 lux (int64):
 //   cos gamma = dir . axis, sin gamma = |dir x axis| (dir Q1.14 -> Q1.30,
-//   products Q2.60 in int64 / 128 bits), gamma = atan2 (BAM), I from
+//   products Q2.60 in int64 / 128 bits), gamma = atan2 (BAM, the table
+//   atan within 5 BAM, root of sin^2 to ~31 bits), I from
 //   LidIntensityQ16; E = I_q16 * g * mantissa * 2^(exponent - 26), formed in
 //   128 bits (< 2^125) and rounded once, saturating to int64.
 int64_t DirectIlluminanceQ20(const int16_t direction_q14[3], uint32_t geometry,

@@ -199,6 +199,40 @@ TEST(Atan2, WithinOneBamOfDouble) {
   EXPECT_EQ(Atan2Bam(-7, -7), 0xA0000000u);
 }
 
+// The table atan2 used per vertex: every octant, every scale, the axes and
+// diagonals, against the long-double angle and within the documented bound.
+TEST(Atan2, FastTableWithinItsBound) {
+  std::mt19937_64 rng(11);
+  long double worst = 0;
+  auto check = [&](int64_t y, int64_t x) {
+    const long double err = std::fabs(
+        BamError(Atan2BamFast(y, x), static_cast<long double>(y), static_cast<long double>(x)));
+    worst = std::max(worst, err);
+    ASSERT_LE(err, static_cast<long double>(kAtan2FastMaxErrorBam)) << y << ", " << x;
+  };
+  constexpr int64_t kMin = std::numeric_limits<int64_t>::min();
+  constexpr int64_t kMax = std::numeric_limits<int64_t>::max();
+  const int64_t edges[] = {kMin, kMin + 1, -1000000007, -3, -2, -1, 0, 1, 2, 3, 1000000007, kMax};
+  for (int64_t y : edges)
+    for (int64_t x : edges)
+      if (x != 0 || y != 0) check(y, x);
+  for (int i = 0; i < 300000; ++i) {
+    const int shift = static_cast<int>(rng() % 63);
+    const int64_t y = static_cast<int64_t>(rng()) >> shift;
+    const int64_t x =
+        static_cast<int64_t>(rng()) >> (i % 3 == 0 ? static_cast<int>(rng() % 63) : shift);
+    if (x != 0 || y != 0) check(y, x);
+  }
+  // Near the table's worst point (tan = 1/sqrt(3), 30 degrees), densely.
+  for (int64_t i = -20000; i <= 20000; ++i) check(577350269 + i * 37, 1000000000);
+  std::cout << "[ measured ] Atan2BamFast max error " << static_cast<double>(worst) << " BAM\n";
+  EXPECT_EQ(Atan2BamFast(0, 5), 0u);
+  EXPECT_EQ(Atan2BamFast(5, 0), 0x40000000u);
+  EXPECT_EQ(Atan2BamFast(-5, 0), 0xC0000000u);
+  EXPECT_EQ(Atan2BamFast(7, 7), 0x20000000u);
+  EXPECT_EQ(Atan2BamFast(-7, -7), 0xA0000000u);
+}
+
 TEST(Atan2, InvertsSinCos) {
   // Q1.30 sin/cos carry ~0.5 LSB each, i.e. ~0.5/2^30 rad = 0.34 BAM.
   std::mt19937_64 rng(6);
