@@ -4,6 +4,7 @@
 #include "relight/baker/analytic_photometry.h"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace relight::baker {
@@ -107,6 +108,38 @@ double AnalyticCandela(const std::string& kind, double c, double g) {
   throw std::invalid_argument("AnalyticCandela: unknown kind '" + kind + "'");
 }
 
+double AnalyticTypeBFlood(double h_deg, double v_deg, double h_peak_deg) {
+  const double dh = (h_deg - h_peak_deg) / 25, dv = (v_deg - 5) / 12;
+  return 2000 * std::exp(-dh * dh - dv * dv);
+}
+
+std::string TypeBFloodIes(bool symmetric) {
+  const std::vector<double> v = Steps(-90, 90, 2.5);
+  const std::vector<double> h = symmetric ? Steps(0, 90, 2.5) : Steps(-90, 90, 2.5);
+  const double h_peak = symmetric ? 0 : 10;
+  std::string text = "IESNA:LM-63-2002\n[TEST] relight analytic fixture\n[MANUFAC] relight\n"
+                     "[LUMINAIRE] relight analytic type B flood\nTILT=NONE\n";
+  // lamps, lumens (-1: absolute), multiplier, #V, #H, type 2 (B), metres, opening 0.3 x 0.2 x 0.15.
+  text += "1 -1 1 " + std::to_string(v.size()) + " " + std::to_string(h.size()) + " 2 2 0.3 0.2 0.15\n";
+  text += "1 1 150\n";
+  const auto list = [&text](const std::vector<double>& values) {
+    char buf[32];
+    for (size_t i = 0; i < values.size(); ++i) {
+      std::snprintf(buf, sizeof buf, "%g", values[i]);
+      text += buf;
+      text += (i + 1) % 10 == 0 || i + 1 == values.size() ? "\n" : " ";
+    }
+  };
+  list(v);
+  list(h);
+  for (double hh : h) {
+    std::vector<double> row;
+    for (double vv : v) row.push_back(std::round(AnalyticTypeBFlood(hh, vv, h_peak) * 100) / 100);
+    list(row);
+  }
+  return text;
+}
+
 std::vector<PhotometricFixture> PhotometricFixtures() {
   const std::vector<double> g_full = Steps(0, 180, 2.5), g_down = Steps(0, 90, 2.5);
   std::vector<PhotometricFixture> out;
@@ -180,8 +213,13 @@ std::vector<MalformedFixture> MalformedPhotometricFixtures() {
     out.push_back({"ies_no_tilt.ies", text, "no TILT= line", 0});
   }
   {
+    const std::string text = ReplaceAfter(ies, "TILT=NONE", " 1 2 0 0 0", " 3 2 0 0 0");
+    out.push_back({"ies_type_a.ies", text, "photometric type A is not supported", 0});
+  }
+  {
+    // Type B with a type C file's vertical angles (0..180): past 90 is out of range.
     const std::string text = ReplaceAfter(ies, "TILT=NONE", " 1 2 0 0 0", " 2 2 0 0 0");
-    out.push_back({"ies_type_b.ies", text, "photometric type B is not supported", 0});
+    out.push_back({"ies_type_b_angles.ies", text, "expected an angle in [-90, 90] degrees", 0});
   }
   {
     const std::string text = ldt.substr(0, ldt.size() * 2 / 3);

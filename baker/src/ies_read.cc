@@ -1,7 +1,8 @@
 // ParseIes: IES LM-63 photometric files, every header generation (1986 with
 // no identifier line, IESNA91, IESNA:LM-63-1995 / "IESNA95", -2002,
 // IES:LM-63-2019), TILT=NONE / INCLUDE / <file>, photometric type C with any
-// horizontal symmetry. After the TILT line the data is a stream of numbers
+// horizontal symmetry, and type B (floodlights), resampled to type C
+// (type_b_photometry.h). After the TILT line the data is a stream of numbers
 // separated by blanks or commas over any number of lines (PITFALLS.md).
 #include <algorithm>
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <sstream>
 
 #include "photometric_text.h"
+#include "type_b_photometry.h"
 #include "relight/baker/photometric_file.h"
 #include "relight/baker/scene.h"
 
@@ -153,10 +155,10 @@ PhotometricTable ParseIes(const std::string& text, const std::string& path) {
   const int n_horizontal = in.Integer("number of horizontal angles", 1, kMaxAngles);
   const int type_line = in.line();
   const int type = in.Integer("photometric type (1 = C, 2 = B, 3 = A)", 1, 3);
-  if (type != 1) {
-    in.Fail(type_line, std::string("photometric type ") + (type == 2 ? "B" : "A") +
-                           " is not supported: relight reads type C (1) files");
+  if (type == 3) {
+    in.Fail(type_line, "photometric type A is not supported: relight reads type C (1) and type B (2) files");
   }
+  const bool type_b = type == 2;
   in.Integer("units type (1 = feet, 2 = metres)", 1, 2);
   for (const char* what : {"luminous opening width", "luminous opening length",
                            "luminous opening height"}) {
@@ -172,11 +174,18 @@ PhotometricTable ParseIes(const std::string& text, const std::string& path) {
 
   t.multiplier = multiplier * ballast * lamp_factor;
   t.lamp_lumens = lumens_per_lamp > 0 ? lamps * lumens_per_lamp : 0;
-  t.gamma_deg = ReadAngles(&in, n_vertical, "vertical angle", 0, 180);
+  std::vector<double> vertical =
+      ReadAngles(&in, n_vertical, "vertical angle", type_b ? -90 : 0, type_b ? 90 : 180);
   const int h_line = in.line();
-  t.c_deg = ReadAngles(&in, n_horizontal, "horizontal angle", 0, 360);
-  t.symmetry = SymmetryOf(t.c_deg, &in, h_line);
-  t.candela.reserve(static_cast<size_t>(n_vertical) * static_cast<size_t>(n_horizontal));
+  std::vector<double> horizontal =
+      ReadAngles(&in, n_horizontal, "horizontal angle", type_b ? -90 : 0, type_b ? 90 : 360);
+  if (type_b && (n_vertical < 2 || n_horizontal < 2)) {
+    in.Fail(h_line, "a type B file needs at least 2 vertical and 2 horizontal angles, got " +
+                        std::to_string(n_vertical) + " and " + std::to_string(n_horizontal));
+  }
+  if (!type_b) t.symmetry = SymmetryOf(horizontal, &in, h_line);
+  std::vector<double> candela;
+  candela.reserve(static_cast<size_t>(n_vertical) * static_cast<size_t>(n_horizontal));
   for (int h = 0; h < n_horizontal; ++h) {
     for (int v = 0; v < n_vertical; ++v) {
       const std::string what = "candela value " + std::to_string(v + 1) + " of " +
@@ -185,11 +194,19 @@ PhotometricTable ParseIes(const std::string& text, const std::string& path) {
       const int line = in.line();
       const double cd = in.Number(what);
       if (cd < 0) in.Fail(line, what + " is negative (" + Fmt(cd) + ")");
-      t.candela.push_back(cd * t.multiplier);
+      candela.push_back(cd * t.multiplier);
     }
   }
   in.ExpectEnd(std::to_string(n_horizontal) + " x " + std::to_string(n_vertical) +
                " candela values");
+  if (type_b) {
+    t.photometric_type = "B";
+    ConvertTypeBToC(TypeBTable{std::move(horizontal), std::move(vertical), std::move(candela)}, &t);
+  } else {
+    t.gamma_deg = std::move(vertical);
+    t.c_deg = std::move(horizontal);
+    t.candela = std::move(candela);
+  }
   if (!(t.PeakCandela() > 0)) {
     throw SceneError(path, tilt_line_no + 1, "every candela value is 0: the file emits no light");
   }

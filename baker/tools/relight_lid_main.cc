@@ -32,6 +32,8 @@ int Info(const std::string& path) {
   std::printf("  format     %s %s, TILT=%s\n", t.format == PhotometricFormat::kIes ? "IES" : "EULUMDAT",
               t.version.c_str(), t.tilt.c_str());
   std::printf("  luminaire  %s\n", t.luminaire.c_str());
+  std::printf("  type       %s\n", t.photometric_type == "B" ? "B (floodlight), resampled to C/gamma"
+                                                                  : t.photometric_type.c_str());
   std::printf("  symmetry   %s\n", CSymmetryName(t.symmetry));
   std::printf("  planes     %zu (C %g..%g), gammas %zu (%g..%g)\n", t.planes(), t.c_deg.front(),
               t.c_deg.back(), t.gammas(), t.gamma_deg.front(), t.gamma_deg.back());
@@ -58,6 +60,8 @@ int Fixtures(const std::string& dir) {
     if (!WriteText(dir + "/" + f.file_name, f.text)) return 1;
     std::printf("%s/%s\n", dir.c_str(), f.file_name.c_str());
   }
+  if (!WriteText(dir + "/" + kTypeBFloodFile, TypeBFloodIes(false))) return 1;
+  std::printf("%s/%s\n", dir.c_str(), kTypeBFloodFile);
   for (const MalformedFixture& f : MalformedPhotometricFixtures()) {
     if (!WriteText(dir + "/malformed/" + f.file_name, f.text)) return 1;
     std::printf("%s/malformed/%s\n", dir.c_str(), f.file_name.c_str());

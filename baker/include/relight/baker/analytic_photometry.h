@@ -24,6 +24,15 @@ struct PhotometricFixture {
 // "asym" (no symmetry).
 double AnalyticCandela(const std::string& kind, double c_deg, double gamma_deg);
 
+// A floodlight measured in IES type B (type_b_photometry.h has the angles):
+// 2000 cd at its peak, 5 degrees up and `h_peak_deg` to the right, falling
+// as Gaussians of 25 degrees across and 12 up and down; at (H, V) degrees.
+double AnalyticTypeBFlood(double h_deg, double v_deg, double h_peak_deg);
+// Its LM-63-2002 type B file, 2.5-degree steps: H -90..90 with the peak
+// 10 degrees to the right, or (`symmetric`) H 0..90 with the peak on the axis.
+std::string TypeBFloodIes(bool symmetric);
+inline constexpr const char* kTypeBFloodFile = "ies_2002_type_b_flood.ies";
+
 // Every well-formed fixture, deterministic.
 std::vector<PhotometricFixture> PhotometricFixtures();
 

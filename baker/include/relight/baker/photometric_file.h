@@ -44,6 +44,9 @@ struct PhotometricTable {
   PhotometricFormat format = PhotometricFormat::kIes;
   std::string version;  // "LM-63-1986" ... "LM-63-2019", "EULUMDAT"
   std::string tilt;     // IES: "NONE", "INCLUDE" or the TILT file's name
+  // "C", or "B" for an IES type B (floodlight) file, whose table here is
+  // already resampled to (C, gamma) (type_b_photometry.h).
+  std::string photometric_type = "C";
   TiltData tilt_data;
   CSymmetry symmetry = CSymmetry::kAxial;
   std::vector<double> c_deg;      // stored planes, strictly increasing
