@@ -13,5 +13,5 @@ mkdir -p out/frames
 # console): 2 frames/s for the script's 7 s, then it exits.
 "$BUILD_DIR"/runtime/daemon/relightd out/living_room.rlb --replay fixtures/living_room.replay --fps 2 \
     --exit-when-replay-done --png out/frames/living_room_%04d.png --sheet out/living_room_sheet.png
-"$BUILD_DIR"/runtime/relight-probe out/living_room.rlb -o out/living_room_floor.csv
-echo "relight: frames in out/frames/ (all of them on one page: out/living_room_sheet.png), floor illuminance in out/living_room_floor.csv"
+"$BUILD_DIR"/runtime/relight-probe out/living_room.rlb -o out/living_room_floor.csv --svg out/living_room_floor.svg
+echo "relight: frames in out/frames/ (all of them on one page: out/living_room_sheet.png), floor illuminance in out/living_room_floor.csv and, as a false-colour plan, out/living_room_floor.svg"

@@ -1,8 +1,9 @@
 // relight-probe: illuminance (lux) at every calculation-grid point of a bake
 // for the given fixture settings, as a lighting designer's work-plane check:
-// a CSV of every point plus min / average / max and uniformity per grid.
+// a CSV of every point plus min / average / max and uniformity per grid, and
+// a false-colour plan of each grid (lux_map_svg.h).
 //
-//   relight-probe room.rlb --set ceiling_spot.tilt=30 -o grid.csv
+//   relight-probe room.rlb --set ceiling_spot.tilt=30 -o grid.csv --svg grid.svg
 #include <algorithm>
 #include <cstdio>
 #include <string>
@@ -10,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "lux_map_svg.h"
 #include "relight/engine.h"
 #include "set_args.h"
 
@@ -22,6 +24,20 @@ double PhotometricLux(const int32_t* rgb_q12) {
   return (0.2126 * rgb_q12[0] + 0.7152 * rgb_q12[1] + 0.0722 * rgb_q12[2]) / 4096.0;
 }
 
+// Writes `text` to `path` through a temporary file, so a failed write never
+// leaves half a file behind.
+bool WriteFileAtomically(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (f == nullptr) return false;
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (std::fclose(f) != 0 || !ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -29,12 +45,14 @@ int main(int argc, char** argv) {
       "relight-probe: illuminance in lux at the calculation-grid points of a bake.\n"
       "Writes one CSV row per point (grid, point, x_m, y_m, z_m, E_total_lux, E_direct_lux) and\n"
       "prints per grid: Emin, Eavg, Emax (lux) and uniformity U0 = Emin / Eavg.\n"
+      "--svg draws each grid as a false-colour plan in lux with those figures (opens in a browser).\n"
       "Settings: --set FIXTURE.PARAM=VALUE as for relight-render."};
-  std::string bake_path, out_path;
+  std::string bake_path, out_path, svg_path;
   std::vector<std::string> sets;
   app.add_option("bake", bake_path, "bake file written by relight-bake (.rlb)")->required();
   app.add_option("--set", sets, "fixture setting FIXTURE.PARAM=VALUE (repeatable)");
   app.add_option("-o,--output", out_path, "CSV file to write (default: summary only)");
+  app.add_option("--svg", svg_path, "false-colour lux plan of every grid to write (SVG)");
   CLI11_PARSE(app, argc, argv);
 
   relight::Engine engine;
@@ -67,25 +85,37 @@ int main(int argc, char** argv) {
     std::fprintf(csv, "grid,point,x_m,y_m,z_m,E_total_lux,E_direct_lux\n");
   }
   std::printf("%-16s %8s %10s %10s %10s %8s\n", "grid", "points", "Emin_lux", "Eavg_lux", "Emax_lux", "U0");
+  std::vector<relight::cli::GridLux> plans;
   for (size_t g = 0; g < bake.grids.size(); ++g) {
     const relight::BakeGrid& grid = bake.grids[g];
     const int32_t* total = engine.grid_illuminance(static_cast<int>(g));
     const int32_t* direct = engine.grid_direct_illuminance(static_cast<int>(g));
-    double lo = 1e300, hi = 0, sum = 0;
+    relight::cli::GridLux plan{grid.name, grid.columns, grid.rows, {}, {}};
     for (uint32_t p = 0; p < grid.point_count(); ++p) {
       const double e = PhotometricLux(total + 3 * p);
-      lo = std::min(lo, e);
-      hi = std::max(hi, e);
-      sum += e;
+      plan.lux.push_back(e);
+      for (int k = 0; k < 3; ++k) plan.xyz_m.push_back(grid.points[3 * p + k] / 65536.0);
       if (csv != nullptr) {
         std::fprintf(csv, "%s,%u,%.4f,%.4f,%.4f,%.3f,%.3f\n", grid.name.c_str(), p, grid.points[3 * p] / 65536.0,
                      grid.points[3 * p + 1] / 65536.0, grid.points[3 * p + 2] / 65536.0, e,
                      PhotometricLux(direct + 3 * p));
       }
     }
-    const double avg = grid.point_count() > 0 ? sum / grid.point_count() : 0;
-    std::printf("%-16s %8u %10.2f %10.2f %10.2f %8.3f\n", grid.name.c_str(), grid.point_count(), lo, avg, hi,
-                avg > 0 ? lo / avg : 0.0);
+    const relight::cli::LuxSummary sum = relight::cli::Summarise(plan.lux);
+    std::printf("%-16s %8u %10.2f %10.2f %10.2f %8.3f\n", grid.name.c_str(), grid.point_count(), sum.min, sum.avg,
+                sum.max, sum.u0);
+    plans.push_back(std::move(plan));
+  }
+  if (!svg_path.empty()) {
+    std::string settings;
+    for (const std::string& text : sets) settings += (settings.empty() ? "" : ", ") + text;
+    const std::string subtitle = "relight-probe " + bake_path + " (scene '" + bake.scene_name + "'), " +
+                                 (settings.empty() ? std::string("scene defaults") : settings);
+    if (!WriteFileAtomically(svg_path, relight::cli::LuxMapSvg(plans, subtitle))) {
+      std::fprintf(stderr, "relight-probe: error: cannot write '%s'\n", svg_path.c_str());
+      return 1;
+    }
+    std::printf("relight-probe: wrote %s\n", svg_path.c_str());
   }
   if (csv != nullptr) {
     const bool ok = std::fclose(csv) == 0 && std::rename(tmp_path.c_str(), out_path.c_str()) == 0;
