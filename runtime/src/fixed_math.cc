@@ -253,60 +253,63 @@ void SinCosQ30(Bam angle, Q1_30* sin_out, Q1_30* cos_out) {
   *cos_out = Q1_30::FromRaw(static_cast<int32_t>(RoundShift(c, 31)));
 }
 
-Bam Atan2Bam(int64_t y, int64_t x) {
-  // Axes exactly (CORDIC would land within a fraction of a BAM anyway).
+namespace {
+
+// Shifts a and b together so the larger's top bit lands on `bit` (a or b > 0).
+void ScaleTopBitTo(int bit, uint64_t* a, uint64_t* b) {
+  const int top = HighestBit(*a > *b ? *a : *b);
+  if (top > bit) {
+    *a >>= top - bit;
+    *b >>= top - bit;
+  } else {
+    *a <<= bit - top;
+    *b <<= bit - top;
+  }
+}
+
+// atan2 by quadrant: the axes exactly, otherwise first_quadrant(|x|, |y|)
+// (a BAM in [0, 2^30]) unfolded to the whole turn.
+template <typename FirstQuadrant>
+Bam Atan2ByQuadrant(int64_t y, int64_t x, FirstQuadrant first_quadrant) {
   if (y == 0) return x >= 0 ? 0u : 0x80000000u;
   if (x == 0) return y > 0 ? 0x40000000u : 0xC0000000u;
-  // Work on |x|, |y| (first quadrant), scaled so the larger is in [2^59, 2^60):
-  // the CORDIC gain 1.65 times sqrt(2) then stays below 2^62.
-  uint64_t ux = x < 0 ? 0 - static_cast<uint64_t>(x) : static_cast<uint64_t>(x);
-  uint64_t uy = y < 0 ? 0 - static_cast<uint64_t>(y) : static_cast<uint64_t>(y);
-  const int top = HighestBit(ux > uy ? ux : uy);
-  if (top > 59) {
-    ux >>= top - 59;
-    uy >>= top - 59;
-  } else {
-    ux <<= 59 - top;
-    uy <<= 59 - top;
-  }
-  const int64_t z = CordicFirstQuadrant(static_cast<int64_t>(ux), static_cast<int64_t>(uy));
-  const uint32_t first = static_cast<uint32_t>(RoundShift(z, kAngleFrac));  // [0, 2^30]
+  const uint64_t ux = x < 0 ? 0 - static_cast<uint64_t>(x) : static_cast<uint64_t>(x);
+  const uint64_t uy = y < 0 ? 0 - static_cast<uint64_t>(y) : static_cast<uint64_t>(y);
+  const uint32_t first = first_quadrant(ux, uy);
   uint32_t bam = first;
   if (x < 0) bam = 0x80000000u - first;  // pi - a
   if (y < 0) bam = 0u - bam;             // mirror below the x axis
   return bam;
 }
 
+}  // namespace
+
+Bam Atan2Bam(int64_t y, int64_t x) {
+  return Atan2ByQuadrant(y, x, [](uint64_t ux, uint64_t uy) {
+    // The larger in [2^59, 2^60): the CORDIC gain 1.65 times sqrt(2) then stays below 2^62.
+    ScaleTopBitTo(59, &ux, &uy);
+    const int64_t z = CordicFirstQuadrant(static_cast<int64_t>(ux), static_cast<int64_t>(uy));
+    return static_cast<uint32_t>(RoundShift(z, kAngleFrac));
+  });
+}
+
 Bam Atan2BamFast(int64_t y, int64_t x) {
-  if (y == 0) return x >= 0 ? 0u : 0x80000000u;
-  if (x == 0) return y > 0 ? 0x40000000u : 0xC0000000u;
-  uint64_t ux = x < 0 ? 0 - static_cast<uint64_t>(x) : static_cast<uint64_t>(x);
-  uint64_t uy = y < 0 ? 0 - static_cast<uint64_t>(y) : static_cast<uint64_t>(y);
-  const bool steep = uy > ux;  // past 45 degrees: atan(y/x) = 90 - atan(x/y)
-  uint64_t big = steep ? uy : ux, small = steep ? ux : uy;
-  // big to [2^31, 2^32) (the ratio keeps 31 bits), so small * 2^32 fits 64 bits.
-  const int top = HighestBit(big);
-  if (top > 31) {
-    big >>= top - 31;
-    small >>= top - 31;
-  } else {
-    big <<= 31 - top;
-    small <<= 31 - top;
-  }
-  const uint64_t t = (small << 32) / big;  // tan in Q0.32, [0, 2^32]
-  constexpr int kFracBits = 32 - kAtanSegmentBits;
-  const uint64_t index = t >> kFracBits;
-  uint32_t first = kAtanRatioTable[kAtanSegments];
-  if (index < static_cast<uint64_t>(kAtanSegments)) {
-    const uint64_t frac = t & ((uint64_t{1} << kFracBits) - 1);
-    const uint32_t a = kAtanRatioTable[index], b = kAtanRatioTable[index + 1];
-    first = a + static_cast<uint32_t>(((b - a) * frac + (uint64_t{1} << (kFracBits - 1))) >> kFracBits);
-  }
-  if (steep) first = 0x40000000u - first;  // [0, 2^30]
-  uint32_t bam = first;
-  if (x < 0) bam = 0x80000000u - first;
-  if (y < 0) bam = 0u - bam;
-  return bam;
+  return Atan2ByQuadrant(y, x, [](uint64_t ux, uint64_t uy) {
+    const bool steep = uy > ux;  // past 45 degrees: atan(y/x) = 90 - atan(x/y)
+    uint64_t big = steep ? uy : ux, small = steep ? ux : uy;
+    // big to [2^31, 2^32) (the ratio keeps 31 bits), so small * 2^32 fits 64 bits.
+    ScaleTopBitTo(31, &big, &small);
+    const uint64_t t = (small << 32) / big;  // tan in Q0.32, [0, 2^32]
+    constexpr int kFracBits = 32 - kAtanSegmentBits;
+    const uint64_t index = t >> kFracBits;
+    uint32_t first = kAtanRatioTable[kAtanSegments];
+    if (index < static_cast<uint64_t>(kAtanSegments)) {
+      const uint64_t frac = t & ((uint64_t{1} << kFracBits) - 1);
+      const uint32_t a = kAtanRatioTable[index], b = kAtanRatioTable[index + 1];
+      first = a + static_cast<uint32_t>(((b - a) * frac + (uint64_t{1} << (kFracBits - 1))) >> kFracBits);
+    }
+    return steep ? 0x40000000u - first : first;  // [0, 2^30]
+  });
 }
 
 void NormaliseQ30(const int64_t v[3], int32_t out_q30[3]) {
