@@ -98,6 +98,7 @@ bool ApplySets(const Scene& scene, const std::vector<std::string>& sets,
     FixtureSetting& s = (*settings)[index];
     if (arg.param == "pan") s.pan_deg = arg.values[0];
     if (arg.param == "tilt") s.tilt_deg = arg.values[0];
+    if (arg.param == "roll") s.roll_deg = arg.values[0];
     if (arg.param == "dimmer") s.dimmer = arg.values[0];
     if (arg.param == "r") s.colour[0] = arg.values[0];
     if (arg.param == "g") s.colour[1] = arg.values[0];
@@ -314,7 +315,7 @@ int main(int argc, char** argv) {
   app.add_flag("--reference", args.reference,
                "solve with the exact distributions and write CSV instead of a bake");
   app.add_option("--set", args.sets,
-                 "with --reference: FIXTURE.PARAM=VALUE, PARAM one of pan, tilt (degrees), "
+                 "with --reference: FIXTURE.PARAM=VALUE, PARAM one of pan, tilt, roll (degrees), "
                  "dimmer (0..1 or 0..100%), r, g, b (0..1), colour=R,G,B (repeatable)");
   try {
     app.parse(argc, argv);

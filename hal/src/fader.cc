@@ -20,9 +20,10 @@ Fader::Fader(const std::vector<FixturePatch>& fixtures) : slots_(fixtures.size()
 
 void Fader::Reset(int slot, const FixtureState& state) {
   Slot& s = slots_[static_cast<size_t>(slot)];
-  const int32_t values[6] = {state.pan_deg.raw(), state.tilt_deg.raw(), state.dimmer.raw(),
-                             state.rgb[0].raw(),  state.rgb[1].raw(),  state.rgb[2].raw()};
-  for (int p = 0; p < 6; ++p) {
+  const int32_t values[kParamCount] = {state.pan_deg.raw(), state.tilt_deg.raw(), state.dimmer.raw(),
+                                       state.rgb[0].raw(),  state.rgb[1].raw(),  state.rgb[2].raw(),
+                                       state.roll_deg.raw()};  // in Param order
+  for (int p = 0; p < kParamCount; ++p) {
     s.ramps[p] = Ramp();
     s.ramps[p].from = s.ramps[p].to = s.ramps[p].shown = values[p];
     s.ramps[p].report = true;
@@ -54,7 +55,7 @@ bool Fader::SetTarget(const ParamChange& change, int64_t now_us) {
 size_t Fader::Step(int64_t now_us, ParamChange* out) {
   size_t n = 0;
   for (Slot& s : slots_) {
-    for (int p = 0; p < 6; ++p) {
+    for (int p = 0; p < kParamCount; ++p) {
       Ramp& r = s.ramps[p];
       int32_t value = ValueAt(r, now_us);
       if (static_cast<Param>(p) == Param::kDimmer) value = ApplyDimmerCurve(s.patch.dimmer_curve, value);
@@ -77,7 +78,7 @@ void Fader::CopyRampsFrom(const Fader& old) {
   for (Slot& s : slots_) {
     for (const Slot& o : old.slots_) {
       if (o.patch.name != s.patch.name) continue;
-      for (int p = 0; p < 6; ++p) {
+      for (int p = 0; p < kParamCount; ++p) {
         s.ramps[p] = o.ramps[p];
         s.ramps[p].report = true;
       }

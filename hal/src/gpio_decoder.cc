@@ -87,7 +87,7 @@ void GpioDecoder::Step(Encoder& e, int new_state, int64_t time_us, ChangeRing* o
   const int dir = QuadratureStep(e.state, new_state);
   e.state = new_state;
   if (dir == 0) return;
-  const bool angle = e.config.param == Param::kPan || e.config.param == Param::kTilt;
+  const bool angle = IsAngle(e.config.param);
   const int64_t lo = angle ? -720 * 65536 : 0;
   const int64_t hi = angle ? 720 * 65536 : 32767;
   int64_t v = int64_t{e.value} + dir * int64_t{e.config.step};

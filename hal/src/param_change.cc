@@ -41,8 +41,19 @@ const char* ParamName(Param param) {
     case Param::kRed: return "r";
     case Param::kGreen: return "g";
     case Param::kBlue: return "b";
+    case Param::kRoll: return "roll";
   }
   return "?";
+}
+
+bool ParamFromName(const std::string& name, Param* out) {
+  for (int p = 0; p < kParamCount; ++p) {
+    if (name == ParamName(static_cast<Param>(p))) {
+      *out = static_cast<Param>(p);
+      return true;
+    }
+  }
+  return false;
 }
 
 int ParseParamText(const std::string& text, int64_t time_us, ParamChange out[3], std::string* error) {
@@ -86,6 +97,10 @@ int ParseParamText(const std::string& text, int64_t time_us, ParamChange out[3],
     return 3;
   }
 
+  Param kind = Param::kDimmer;
+  if (!ParamFromName(param, &kind)) {
+    return fail("unknown parameter '" + param + "' (pan, tilt, roll, dimmer, r, g, b, colour)");
+  }
   bool percent = false;
   if (param == "dimmer" && !value.empty() && value.back() == '%') {
     percent = true;
@@ -95,19 +110,13 @@ int ParseParamText(const std::string& text, int64_t time_us, ParamChange out[3],
   if (!ParseNumber(value, &v)) return fail("'" + value + "' is not a number");
   if (percent) v /= 100.0;
   out[0] = base;
-  if (param == "pan" || param == "tilt") {
-    if (v < -720 || v > 720) return fail("angle out of range -720..720 degrees");
-    out[0].param = param == "pan" ? Param::kPan : Param::kTilt;
+  out[0].param = kind;
+  if (IsAngle(kind)) {
+    if (v < -720 || v > 720) return fail(param + " must be in -720..720 degrees");
     out[0].value = DegreesQ16(v);
-  } else if (param == "dimmer" || param == "r" || param == "g" || param == "b") {
-    if (v < 0 || v > 1) return fail(param + " must be in 0..1" + (param == "dimmer" ? " (or 0..100%)" : ""));
-    out[0].param = param == "dimmer" ? Param::kDimmer
-                 : param == "r"      ? Param::kRed
-                 : param == "g"      ? Param::kGreen
-                                     : Param::kBlue;
-    out[0].value = LevelQ15(v);
   } else {
-    return fail("unknown parameter '" + param + "' (pan, tilt, dimmer, r, g, b, colour)");
+    if (v < 0 || v > 1) return fail(param + " must be in 0..1" + (param == "dimmer" ? " (or 0..100%)" : ""));
+    out[0].value = LevelQ15(v);
   }
   return 1;
 }

@@ -9,7 +9,7 @@ RegisterInput::RegisterInput(const RegisterMap& map, std::vector<uint16_t> initi
       latest_(std::move(initial)),
       arrival_us_(static_cast<size_t>(map.fixture_count()), 0),
       dirty_(static_cast<size_t>(map.fixture_count()), 0),
-      pending_(static_cast<size_t>(map.fixture_count()) * 6) {
+      pending_(static_cast<size_t>(map.fixture_count()) * kParamCount) {
   latest_.resize(static_cast<size_t>(map.holding_count()), 0);
   emitted_ = latest_;
 }
@@ -40,7 +40,7 @@ size_t RegisterInput::Collect(ParamChange* out, size_t capacity) {
       const uint16_t* after = &latest_[base];
       pending_count_ += map_.DecodeChanges(f, before, after, arrival_us_[static_cast<size_t>(f)],
                                            &pending_[pending_count_]);
-      std::copy(after, after + kRegistersPerFixture, before);
+      std::copy(after, after + map_.fixture(f).layout.size(), before);
     }
   }
   size_t n = 0;

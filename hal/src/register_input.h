@@ -43,7 +43,7 @@ class RegisterInput {
   std::vector<uint8_t> dirty_;           // per fixture, guarded by mutex_
   // Collect()'s own state.
   std::vector<uint16_t> emitted_;        // register image already turned into changes
-  std::vector<ParamChange> pending_;     // fixed capacity: 6 per fixture
+  std::vector<ParamChange> pending_;     // fixed capacity: kParamCount per fixture
   size_t pending_count_ = 0, pending_next_ = 0;
 };
 

@@ -1,6 +1,9 @@
 #include "relight/hal/register_map.h"
 
+#include <algorithm>
 #include <cstring>
+
+#include "relight/console_value.h"
 
 namespace relight::hal {
 namespace {
@@ -12,14 +15,10 @@ int64_t DivRound(int64_t num, int64_t den) {
 
 }  // namespace
 
-int32_t AngleQ16FromRegister(uint16_t reg, int32_t range_q16) {
-  // (reg - 32768) / 65536 of the range: |product| < 2^15 * 2^27, fits int64.
-  return static_cast<int32_t>(DivRound((static_cast<int64_t>(reg) - 32768) * range_q16, 65536));
-}
+int32_t AngleQ16FromRegister(uint16_t reg, int32_t range_q16) { return ConsoleToDegrees(reg, range_q16).raw(); }
 
 uint16_t RegisterFromAngleQ16(int32_t deg_q16, int32_t range_q16) {
-  const int64_t reg = 32768 + DivRound(static_cast<int64_t>(deg_q16) * 65536, range_q16);
-  return static_cast<uint16_t>(reg < 0 ? 0 : reg > 65535 ? 65535 : reg);
+  return DegreesToConsole(Q16_16::FromRaw(deg_q16), range_q16);
 }
 
 int32_t LevelQ15FromRegister16(uint16_t reg) { return static_cast<int32_t>(DivRound(int64_t{reg} * 32767, 65535)); }
@@ -39,32 +38,25 @@ uint16_t ByteFromLevelQ15(int32_t level_q15) {
   return static_cast<uint16_t>(DivRound(int64_t{level} * 255, 32767));
 }
 
-int32_t ParamValueFromRegister(const FixturePatch& fixture, Param param, uint16_t reg) {
-  switch (param) {
-    case Param::kPan: return AngleQ16FromRegister(reg, fixture.pan_range_q16);
-    case Param::kTilt: return AngleQ16FromRegister(reg, fixture.tilt_range_q16);
-    case Param::kDimmer: return LevelQ15FromRegister16(reg);
-    case Param::kRed:
-    case Param::kGreen:
-    case Param::kBlue: return LevelQ15FromByte(reg);
-  }
-  return 0;
-}
-
 Status RegisterMap::Build(const std::vector<FixturePatch>& fixtures, RegisterMap* out) {
   RegisterMap map;
   map.fixtures_ = fixtures;
   int count = 0;
   for (const FixturePatch& f : fixtures) {
-    if (f.modbus_base < 0 || f.modbus_base + kRegistersPerFixture > 65536) {
+    const int end = f.modbus_base + f.layout.size();
+    if (f.modbus_base < 0 || end > 65536) {
       return Status(StatusCode::kInvalidArgument, "register map: fixture '" + f.name + "' has no valid modbus_base");
     }
-    count = f.modbus_base + kRegistersPerFixture > count ? f.modbus_base + kRegistersPerFixture : count;
+    if (f.pan_range_q16 <= 0 || f.tilt_range_q16 <= 0 || f.roll_range_q16 <= 0) {
+      return Status(StatusCode::kInvalidArgument,
+                    "register map: fixture '" + f.name + "' has no console ranges (resolve the patch first)");
+    }
+    count = end > count ? end : count;
   }
   if (fixtures.size() > 32767) return Status(StatusCode::kInvalidArgument, "register map: too many fixtures");
   map.owner_.assign(static_cast<size_t>(count), -1);
   for (size_t i = 0; i < fixtures.size(); ++i) {
-    for (int k = 0; k < kRegistersPerFixture; ++k) {
+    for (int k = 0; k < fixtures[i].layout.size(); ++k) {
       int16_t& owner = map.owner_[static_cast<size_t>(fixtures[i].modbus_base + k)];
       if (owner >= 0) {
         return Status(StatusCode::kInvalidArgument, "register map: fixtures '" + fixtures[owner].name + "' and '" +
@@ -86,31 +78,43 @@ int RegisterMap::FixtureAt(int addr, int* offset) const {
 
 uint8_t RegisterMap::CheckWrite(int addr, uint16_t value) const {
   int offset = 0;
-  if (FixtureAt(addr, &offset) < 0) return kExceptionIllegalAddress;
-  switch (offset) {
-    case kRegRed:
-    case kRegGreen:
-    case kRegBlue: return value > 255 ? kExceptionIllegalValue : 0;
-    case kRegProfile: return value != 0 ? kExceptionIllegalValue : 0;
-    case kRegFlags: return (value & ~kFlagOn) != 0 ? kExceptionIllegalValue : 0;
-    default: return 0;  // dimmer, pan, tilt: every 16-bit value means something
+  const int fixture = FixtureAt(addr, &offset);
+  if (fixture < 0) return kExceptionIllegalAddress;
+  const RegisterLayout& layout = fixtures_[static_cast<size_t>(fixture)].layout;
+  if (layout.IsByte(offset)) return value > 255 ? kExceptionIllegalValue : 0;
+  switch (layout.at(offset)) {
+    case Channel::kProfile: return value != 0 ? kExceptionIllegalValue : 0;
+    case Channel::kFlags: return (value & ~kFlagOn) != 0 ? kExceptionIllegalValue : 0;
+    default: return 0;  // dimmer and whole 16-bit angles: every value means something
   }
 }
 
-void RegisterMap::Encode(const FixtureState& state, int fixture, uint16_t out[kRegistersPerFixture]) const {
+void RegisterMap::Encode(const FixtureState& state, int fixture, uint16_t* out) const {
   const FixturePatch& f = fixtures_[static_cast<size_t>(fixture)];
-  out[kRegDimmer] = Register16FromLevelQ15(state.dimmer.raw());
-  out[kRegPan] = RegisterFromAngleQ16(state.pan_deg.raw(), f.pan_range_q16);
-  out[kRegTilt] = RegisterFromAngleQ16(state.tilt_deg.raw(), f.tilt_range_q16);
-  for (int c = 0; c < 3; ++c) out[kRegRed + c] = ByteFromLevelQ15(state.rgb[c].raw());
-  out[kRegProfile] = 0;
-  out[kRegFlags] = kFlagOn;
+  const RegisterLayout& layout = f.layout;
+  uint16_t block[kMaxRegistersPerFixture] = {};
+  const auto put = [&](Channel c, uint16_t value) {
+    if (layout.Has(c)) block[layout.OffsetOf(c)] = value;
+  };
+  const auto put_angle = [&](Channel c, Q16_16 deg, int32_t range_q16) {
+    if (layout.Has(c)) layout.PutAngle16(c, DegreesToConsole(deg, range_q16), block);
+  };
+  put(Channel::kDimmer, Register16FromLevelQ15(state.dimmer.raw()));
+  put_angle(Channel::kPan, state.pan_deg, f.pan_range_q16);
+  put_angle(Channel::kTilt, state.tilt_deg, f.tilt_range_q16);
+  put_angle(Channel::kRoll, state.roll_deg, f.roll_range_q16);
+  put(Channel::kRed, ByteFromLevelQ15(state.rgb[0].raw()));
+  put(Channel::kGreen, ByteFromLevelQ15(state.rgb[1].raw()));
+  put(Channel::kBlue, ByteFromLevelQ15(state.rgb[2].raw()));
+  put(Channel::kProfile, 0);
+  put(Channel::kFlags, kFlagOn);
+  std::copy(block, block + layout.size(), out);
 }
 
-size_t RegisterMap::DecodeChanges(int fixture, const uint16_t before[kRegistersPerFixture],
-                                  const uint16_t after[kRegistersPerFixture], int64_t time_us,
-                                  ParamChange out[6]) const {
+size_t RegisterMap::DecodeChanges(int fixture, const uint16_t* before, const uint16_t* after, int64_t time_us,
+                                  ParamChange out[kParamCount]) const {
   const FixturePatch& f = fixtures_[static_cast<size_t>(fixture)];
+  const RegisterLayout& layout = f.layout;
   size_t n = 0;
   const auto emit = [&](Param param, int32_t value) {
     ParamChange& c = out[n++];
@@ -122,13 +126,25 @@ size_t RegisterMap::DecodeChanges(int fixture, const uint16_t before[kRegistersP
     c.param = param;
     c.value = value;
   };
-  const auto dimmer = [](const uint16_t* r) { return (r[kRegFlags] & kFlagOn) ? LevelQ15FromRegister16(r[kRegDimmer]) : 0; };
-  if (dimmer(before) != dimmer(after)) emit(Param::kDimmer, dimmer(after));
-  if (before[kRegPan] != after[kRegPan]) emit(Param::kPan, AngleQ16FromRegister(after[kRegPan], f.pan_range_q16));
-  if (before[kRegTilt] != after[kRegTilt]) emit(Param::kTilt, AngleQ16FromRegister(after[kRegTilt], f.tilt_range_q16));
-  const Param colours[3] = {Param::kRed, Param::kGreen, Param::kBlue};
+  const int dimmer_at = layout.OffsetOf(Channel::kDimmer), flags_at = layout.OffsetOf(Channel::kFlags);
+  const auto dimmer = [&](const uint16_t* r) {
+    const bool on = flags_at < 0 || (r[flags_at] & kFlagOn) != 0;
+    return on ? LevelQ15FromRegister16(r[dimmer_at]) : 0;
+  };
+  if (dimmer_at >= 0 && dimmer(before) != dimmer(after)) emit(Param::kDimmer, dimmer(after));
+  const auto angle = [&](Channel c, Param param, int32_t range_q16) {
+    if (!layout.Has(c)) return;
+    const uint16_t was = layout.Angle16(before, c), now = layout.Angle16(after, c);
+    if (was != now) emit(param, AngleQ16FromRegister(now, range_q16));
+  };
+  angle(Channel::kPan, Param::kPan, f.pan_range_q16);
+  angle(Channel::kTilt, Param::kTilt, f.tilt_range_q16);
+  angle(Channel::kRoll, Param::kRoll, f.roll_range_q16);
+  const Channel colours[3] = {Channel::kRed, Channel::kGreen, Channel::kBlue};
+  const Param params[3] = {Param::kRed, Param::kGreen, Param::kBlue};
   for (int c = 0; c < 3; ++c) {
-    if (before[kRegRed + c] != after[kRegRed + c]) emit(colours[c], LevelQ15FromByte(after[kRegRed + c]));
+    const int at = layout.OffsetOf(colours[c]);
+    if (at >= 0 && before[at] != after[at]) emit(params[c], LevelQ15FromByte(after[at]));
   }
   return n;
 }

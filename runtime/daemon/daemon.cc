@@ -31,10 +31,11 @@ std::vector<uint16_t> RegistersFor(const Engine& engine, const hal::RegisterMap&
   return regs;
 }
 
-std::vector<std::string> LuminaireNames(const Engine& engine) {
-  std::vector<std::string> names;
-  for (const BakeLuminaire& lum : engine.bake().luminaires) names.push_back(lum.name);
-  return names;
+// The bake's luminaires as the patch sees them: names and console ranges.
+std::vector<hal::LuminaireConsole> Luminaires(const Engine& engine) {
+  std::vector<hal::LuminaireConsole> out;
+  for (const BakeLuminaire& lum : engine.bake().luminaires) out.push_back({lum.name, lum.pan_range, lum.tilt_range});
+  return out;
 }
 
 // Sleeps until `deadline_us` on CLOCK_MONOTONIC, or until a signal.
@@ -90,7 +91,7 @@ struct Daemon::Impl {
     map = std::move(new_map);
     fader = std::move(new_fader);
     patch_sources = std::move(sources);
-    outputs.assign(static_cast<size_t>(fader->slot_count()) * 6, hal::ParamChange());
+    outputs.assign(static_cast<size_t>(fader->slot_count()) * hal::kParamCount, hal::ParamChange());
     return Status::Ok();
   }
 
@@ -111,7 +112,7 @@ struct Daemon::Impl {
       p.modbus_tcp.enabled = true;
       p.modbus_tcp.port = config.modbus_port;
     }
-    RELIGHT_RETURN_IF_ERROR(hal::ResolvePatch(LuminaireNames(engine), &p));
+    RELIGHT_RETURN_IF_ERROR(hal::ResolvePatch(Luminaires(engine), &p));
     *out = std::move(p);
     return Status::Ok();
   }

@@ -7,14 +7,10 @@
 
 #include <cstdint>
 
+#include "relight/console_value.h"
 #include "relight/fixed.h"
 
 namespace relight {
-
-// (value - 32768) / 65536 x range, Q16.16 degrees, rounded to nearest.
-Q16_16 ConsoleToDegrees(uint16_t value, int32_t range_deg_q16);
-// The inverse, rounded and clamped to 0..65535.
-uint16_t DegreesToConsole(Q16_16 degrees, int32_t range_deg_q16);
 
 // Among (pan + 360 k, tilt) and (pan + 180 + 360 k, -tilt), the pair with
 // |pan| <= pan_range / 2 and |tilt| <= tilt_range / 2 nearest (|d pan| +

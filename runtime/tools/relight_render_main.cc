@@ -31,12 +31,12 @@ bool ParseVec3(const std::string& text, float out[3]) {
 }
 
 void PrintLuminaires(const relight::Engine& engine) {
-  std::printf("luminaires in the bake (pan/tilt in degrees, dimmer and colour 0..1):\n");
+  std::printf("luminaires in the bake (pan/tilt/roll in degrees, dimmer and colour 0..1):\n");
   for (int i = 0; i < engine.luminaire_count(); ++i) {
     const auto& lum = engine.bake().luminaires[i];
     const relight::FixtureState s = engine.state(i);
-    std::printf("  %-20s pan %7.2f tilt %7.2f dimmer %.3f colour %.3f,%.3f,%.3f  SH degree %d, %s\n",
-                lum.name.c_str(), s.pan_deg.raw() / 65536.0, s.tilt_deg.raw() / 65536.0,
+    std::printf("  %-20s pan %7.2f tilt %7.2f roll %7.2f dimmer %.3f colour %.3f,%.3f,%.3f  SH degree %d, %s\n",
+                lum.name.c_str(), s.pan_deg.raw() / 65536.0, s.tilt_deg.raw() / 65536.0, s.roll_deg.raw() / 65536.0,
                 s.dimmer.raw() / 32767.0, s.rgb[0].raw() / 32767.0, s.rgb[1].raw() / 32767.0,
                 s.rgb[2].raw() / 32767.0, lum.sh_degree,
                 lum.direct_mode == relight::DirectMode::kExactDirect ? "exact direct + SH indirect"
@@ -79,8 +79,9 @@ int AimAtPixel(relight::Engine& engine, const relight::CameraView& view, int wid
 int main(int argc, char** argv) {
   CLI::App app{
       "relight-render: render a baked scene, relit by the given fixture settings, to PNG.\n"
-      "Settings: --set FIXTURE.PARAM=VALUE with PARAM one of pan, tilt (degrees), dimmer (0..1 or\n"
-      "0..100%), r, g, b (0..1) or colour=R,G,B. Unset parameters keep the scene's defaults.\n"
+      "Settings: --set FIXTURE.PARAM=VALUE with PARAM one of pan, tilt, roll (degrees, -720..720;\n"
+      "roll turns the fixture about its beam axis), dimmer (0..1 or 0..100%), r, g, b (0..1) or\n"
+      "colour=R,G,B. Unset parameters keep the scene's defaults.\n"
       "Luminance (cd/m^2) is tone-mapped to sRGB with the bake's display white unless --white is given."};
   std::string bake_path, out_path = "frame.png", replay_path, camera_pos, camera_target, sheet_path;
   std::string aim_pixel, aim_luminaire;

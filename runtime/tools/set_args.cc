@@ -17,8 +17,7 @@ bool ParseSetArg(const std::string& text, SetArg* out, std::string* error) {
     arg.param = hal::ParamName(changes[0].param);
   }
   for (int i = 0; i < n; ++i) {
-    const bool angle = changes[i].param == hal::Param::kPan || changes[i].param == hal::Param::kTilt;
-    arg.values.push_back(angle ? changes[i].value / 65536.0 : changes[i].value / 32767.0);
+    arg.values.push_back(hal::IsAngle(changes[i].param) ? changes[i].value / 65536.0 : changes[i].value / 32767.0);
   }
   *out = std::move(arg);
   return true;
@@ -43,6 +42,7 @@ bool ApplyChange(Engine& engine, const hal::ParamChange& change, std::string* er
     case hal::Param::kRed: st = engine.SetColour(index, level, s.rgb[1], s.rgb[2]); break;
     case hal::Param::kGreen: st = engine.SetColour(index, s.rgb[0], level, s.rgb[2]); break;
     case hal::Param::kBlue: st = engine.SetColour(index, s.rgb[0], s.rgb[1], level); break;
+    case hal::Param::kRoll: st = engine.SetRoll(index, angle); break;
   }
   if (!st.ok()) {
     *error = std::string(change.fixture) + "." + hal::ParamName(change.param) + ": " + st.ToString();

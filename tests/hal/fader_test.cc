@@ -41,15 +41,15 @@ int32_t Find(const ParamChange* out, size_t n, Param param, int32_t fallback) {
 TEST(Fader, ResetReportsEveryParameterOnce) {
   Fader fader(Fixtures(0, DimmerCurve::kLinear));
   fader.Reset(0, Dark());
-  ParamChange out[6];
-  EXPECT_EQ(fader.Step(0, out), 6u);
+  ParamChange out[kParamCount];
+  EXPECT_EQ(fader.Step(0, out), static_cast<size_t>(kParamCount));
   EXPECT_EQ(fader.Step(1, out), 0u);
 }
 
 TEST(Fader, ZeroFadeJumps) {
   Fader fader(Fixtures(0, DimmerCurve::kLinear));
   fader.Reset(0, Dark());
-  ParamChange out[6];
+  ParamChange out[kParamCount];
   (void)fader.Step(0, out);
   ASSERT_TRUE(fader.SetTarget(Target(Param::kPan, 90 << 16), 1000));
   ASSERT_EQ(fader.Step(1000, out), 1u);
@@ -61,7 +61,7 @@ TEST(Fader, ZeroFadeJumps) {
 TEST(Fader, LinearRampInIntegerTime) {
   Fader fader(Fixtures(1000, DimmerCurve::kLinear));  // 1 s fade
   fader.Reset(0, Dark());
-  ParamChange out[6];
+  ParamChange out[kParamCount];
   (void)fader.Step(0, out);
   ASSERT_TRUE(fader.SetTarget(Target(Param::kPan, 100 << 16), 2000000));
   for (int64_t t = 2000000; t <= 3000000; t += 125000) {
@@ -81,6 +81,24 @@ TEST(Fader, LinearRampInIntegerTime) {
   EXPECT_EQ(Find(out, n, Param::kPan, -1), 50 << 16);
 }
 
+TEST(Fader, RollRampsInDegreesLikePanAndTilt) {
+  Fader fader(Fixtures(400, DimmerCurve::kSquare));  // the curve is for the dimmer only
+  FixtureState start = Dark();
+  start.roll_deg = Q16_16::FromInt(-30);
+  fader.Reset(0, start);
+  ParamChange out[kParamCount];
+  const size_t first = fader.Step(0, out);
+  EXPECT_EQ(Find(out, first, Param::kRoll, 0), -(30 << 16));  // reset reports the roll too
+  ASSERT_TRUE(fader.SetTarget(Target(Param::kRoll, 90 << 16), 1000));
+  const size_t n = fader.Step(1000 + 100000, out);  // a quarter of the way: -30 + 120 / 4
+  ASSERT_EQ(n, 1u);
+  EXPECT_EQ(out[0].param, Param::kRoll);
+  EXPECT_EQ(out[0].value, 0);
+  EXPECT_FALSE(fader.Idle(1000 + 100000));
+  EXPECT_EQ(Find(out, fader.Step(1000 + 400000, out), Param::kRoll, -1), 90 << 16);
+  EXPECT_TRUE(fader.Idle(1000 + 400000));
+}
+
 TEST(Fader, SquareLawDimmerCurve) {
   EXPECT_EQ(ApplyDimmerCurve(DimmerCurve::kSquare, 32767), 32767);
   EXPECT_EQ(ApplyDimmerCurve(DimmerCurve::kSquare, 0), 0);
@@ -92,7 +110,7 @@ TEST(Fader, SquareLawDimmerCurve) {
   }
   Fader fader(Fixtures(0, DimmerCurve::kSquare));
   fader.Reset(0, Dark());
-  ParamChange out[6];
+  ParamChange out[kParamCount];
   (void)fader.Step(0, out);
   ASSERT_TRUE(fader.SetTarget(Target(Param::kDimmer, 16384), 10));
   ASSERT_EQ(fader.Step(10, out), 1u);

@@ -1,6 +1,4 @@
-// Shared set-up for hal tests: a resolved two-fixture patch and its map.
-//   spot: holding registers 0..7, pan over 540 deg, tilt over 270 deg
-//   wash: holding registers 8..15, pan over 360 deg, tilt over 180 deg
+// Shared set-up for hal tests: resolved patches and their maps.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -12,6 +10,8 @@
 
 namespace relight::hal::testing {
 
+// spot: holding registers 0..7, pan over 540 deg, tilt over 270 deg
+// wash: holding registers 8..15, pan over 360 deg, tilt over 180 deg
 inline Patch TwoFixturePatch() {
   Patch patch;
   const Status st = ParsePatch(
@@ -19,7 +19,23 @@ inline Patch TwoFixturePatch() {
       "[[fixture]]\nname = \"wash\"\npan_range_deg = 360\ntilt_range_deg = 180\n",
       "test.toml", &patch);
   EXPECT_TRUE(st.ok()) << st.ToString();
-  EXPECT_TRUE(ResolvePatch({"spot", "wash"}, &patch).ok());
+  EXPECT_TRUE(ResolvePatch({{"spot"}, {"wash"}}, &patch).ok());
+  return patch;
+}
+
+// spot: registers 0..9 = dimmer, pan coarse, pan fine, tilt coarse, tilt
+// fine, roll (over 360 deg), r, g, b, flags; its luminaire's console ranges
+// are pan 630 and tilt 265 deg. wash: the standard 8 at 10..17, 540 / 270 deg.
+inline Patch LayoutPatch() {
+  Patch patch;
+  const Status st = ParsePatch(
+      "[[fixture]]\nname = \"spot\"\nmodbus_base = 0\nroll_range_deg = 360\n"
+      "registers = [\"dimmer\", \"pan\", \"pan_fine\", \"tilt\", \"tilt_fine\", \"roll\", \"r\", \"g\", \"b\", "
+      "\"flags\"]\n",
+      "layout.toml", &patch);
+  EXPECT_TRUE(st.ok()) << st.ToString();
+  const Status resolved = ResolvePatch({{"spot", 630 << 16, 265 << 16}, {"wash"}}, &patch);
+  EXPECT_TRUE(resolved.ok()) << resolved.ToString();
   return patch;
 }
 

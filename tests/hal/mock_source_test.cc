@@ -40,7 +40,7 @@ start = 0.5
 )",
                                "gpio.toml", &p);
   EXPECT_TRUE(st.ok()) << st.ToString();
-  EXPECT_TRUE(ResolvePatch({"spot", "wash"}, &p).ok());
+  EXPECT_TRUE(ResolvePatch({{"spot"}, {"wash"}}, &p).ok());
   return p;
 }
 

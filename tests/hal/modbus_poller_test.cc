@@ -73,7 +73,7 @@ TEST(ModbusPoller, ReadsMappedRegistersKeepsStateWhenThePeerGoesAndReconnects) {
   config.rate_hz = 50;
   config.timeout_ms = 200;
   config.backoff_max_ms = 400;
-  config.map = {{0, "wash", Param::kDimmer, 0}, {3, "wash", Param::kRed, 0}, {9, "spot", Param::kPan, 0}};
+  config.map = {{0, "wash", Channel::kDimmer, 0}, {3, "wash", Channel::kRed, 0}, {9, "spot", Channel::kPan, 0}};
   ModbusPoller poller(config, map, RestRegisters(map));
   ASSERT_TRUE(poller.Start().ok());
 
@@ -132,12 +132,12 @@ TEST(ModbusPoller, StartsWithoutAPeerAndNamesBadMapEntries) {
   const RegisterMap map = MapOf(patch);
   ModbusPollerConfig config;
   config.port = 1;  // nothing listens on port 1
-  config.map = {{0, "ghost", Param::kDimmer, 0}};
+  config.map = {{0, "ghost", Channel::kDimmer, 0}};
   ModbusPoller bad(config, map, RestRegisters(map));
   const Status st = bad.Start();
   EXPECT_EQ(st.code(), StatusCode::kNotFound);
   EXPECT_NE(st.message().find("'ghost'"), std::string::npos) << st.message();
-  config.map = {{0, "spot", Param::kDimmer, 0}};
+  config.map = {{0, "spot", Channel::kDimmer, 0}};
   ModbusPoller absent(config, map, RestRegisters(map));
   EXPECT_TRUE(absent.Start().ok());
   ParamChange out[4];

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <chrono>
 #include <cstring>
 #include <thread>
@@ -15,6 +16,7 @@
 namespace relight::hal {
 namespace {
 
+using testing::LayoutPatch;
 using testing::MapOf;
 using testing::RawConnect;
 using testing::RestRegisters;
@@ -275,6 +277,54 @@ TEST_F(ModbusTcp, StopsAndStartsAgainAndReportsABusyPort) {
   TcpClient c(port);
   ASSERT_TRUE(c.Connect());
   EXPECT_EQ(modbus_write_register(c.ctx(), kRegDimmer, 5), 1);
+}
+
+// A patch layout with coarse/fine pan and tilt and a roll register, over the
+// wire: one request carries a fixture's channels; the changes are the
+// 16-bit values over the luminaire's ranges (pan 630, tilt 265, roll 360).
+TEST(ModbusTcpLayout, CoarseFineBytesAndRollBecomeAngles) {
+  const Patch patch = LayoutPatch();
+  const RegisterMap map = MapOf(patch);
+  std::vector<uint16_t> initial(static_cast<size_t>(map.holding_count()), 0);
+  FixtureState rest{};
+  for (int f = 0; f < map.fixture_count(); ++f) {
+    map.Encode(rest, f, &initial[static_cast<size_t>(map.fixture(f).modbus_base)]);
+  }
+  ModbusTcpConfig config;
+  config.port = 0;
+  ModbusTcpServer server(config, map, initial);
+  ASSERT_TRUE(server.Start().ok());
+  TcpClient c(server.port());
+  ASSERT_TRUE(c.Connect());
+  uint16_t back[10] = {};
+  ASSERT_EQ(modbus_read_registers(c.ctx(), 0, 10, back), 10);
+  EXPECT_EQ(back[1], 0x80);  // pan 0 degrees = 32768: coarse 0x80, fine 0
+  EXPECT_EQ(back[2], 0);
+  EXPECT_EQ(back[5], 32768);  // roll 0
+
+  const uint16_t channels[5] = {0xC4, 0x27, 0x3F, 0xFF, 32768 - 4096};  // pan 0xC427, tilt 0x3FFF, roll -22.5
+  ASSERT_EQ(modbus_write_registers(c.ctx(), 1, 5, channels), 5);
+  std::vector<ParamChange> got(16);
+  got.resize(server.Poll(0, got.data(), got.size()));
+  ASSERT_EQ(got.size(), 3u);  // one change per angle, not one per byte
+  EXPECT_EQ(got[0].param, Param::kPan);
+  EXPECT_EQ(got[0].value, AngleQ16FromRegister(0xC427, 630 << 16));
+  EXPECT_LE(std::fabs(got[0].value / 65536.0 - (0xC427 - 32768.0) / 65536.0 * 630), 0.5 / 65536);
+  EXPECT_EQ(got[1].param, Param::kTilt);
+  EXPECT_LE(std::fabs(got[1].value / 65536.0 - (0x3FFF - 32768.0) / 65536.0 * 265), 0.5 / 65536);
+  EXPECT_EQ(got[2].param, Param::kRoll);
+  EXPECT_EQ(got[2].value, -(22 << 16) - 32768);
+  // A fine byte above 255 is refused whole; the fine byte alone moves the pan by one step.
+  const uint16_t bad[2] = {0xC4, 0x100};
+  EXPECT_EQ(modbus_write_registers(c.ctx(), 1, 2, bad), -1);
+  EXPECT_EQ(errno, EMBXILVAL);
+  const uint16_t fine = 0x28;
+  ASSERT_EQ(modbus_write_register(c.ctx(), 2, fine), 1);
+  got.assign(16, ParamChange());
+  got.resize(server.Poll(0, got.data(), got.size()));
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0].value, AngleQ16FromRegister(0xC428, 630 << 16));
+  EXPECT_EQ(server.counters().illegal_value, 1u);
 }
 
 TEST_F(ModbusTcp, MbpollAsAnIndependentClient) {

@@ -1,16 +1,21 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "hal_test_support.h"
 #include "modbus/request_check.h"
 #include "register_input.h"
+#include "relight/hal/register_layout.h"
 #include "relight/hal/register_map.h"
 
 namespace relight::hal {
 namespace {
 
+using testing::LayoutPatch;
 using testing::MapOf;
 using testing::RestRegisters;
 using testing::TwoFixturePatch;
@@ -71,7 +76,7 @@ TEST(RegisterMap, DecodesOnlyWhatChangedAndHonoursTheOnFlag) {
   std::vector<uint16_t> before = RestRegisters(map), after = before;
   after[8 + kRegPan] = 32768 + 16384;  // wash pan: a quarter of 360 degrees
   after[8 + kRegDimmer] = 65535;
-  ParamChange out[6];
+  ParamChange out[kParamCount];
   size_t n = map.DecodeChanges(1, &before[8], &after[8], 42, out);
   ASSERT_EQ(n, 2u);
   EXPECT_STREQ(out[0].fixture, "wash");
@@ -91,6 +96,122 @@ TEST(RegisterMap, DecodesOnlyWhatChangedAndHonoursTheOnFlag) {
   before = after;
   after[8 + kRegDimmer] = 100;
   EXPECT_EQ(map.DecodeChanges(1, &before[8], &after[8], 0, out), 0u);
+}
+
+TEST(RegisterLayout, StandardIsTheDocumentedEight) {
+  const RegisterLayout standard;
+  ASSERT_EQ(standard.size(), kRegistersPerFixture);
+  EXPECT_EQ(standard.OffsetOf(Channel::kDimmer), kRegDimmer);
+  EXPECT_EQ(standard.OffsetOf(Channel::kPan), kRegPan);
+  EXPECT_EQ(standard.OffsetOf(Channel::kTilt), kRegTilt);
+  EXPECT_EQ(standard.OffsetOf(Channel::kRed), kRegRed);
+  EXPECT_EQ(standard.OffsetOf(Channel::kBlue), kRegBlue);
+  EXPECT_EQ(standard.OffsetOf(Channel::kProfile), kRegProfile);
+  EXPECT_EQ(standard.OffsetOf(Channel::kFlags), kRegFlags);
+  EXPECT_FALSE(standard.Has(Channel::kRoll));
+  EXPECT_FALSE(standard.IsByte(kRegPan));  // 16-bit pan in one register
+  EXPECT_TRUE(standard.IsByte(kRegRed));
+}
+
+TEST(RegisterLayout, RejectsBadListsSayingWhich) {
+  struct Case {
+    std::vector<Channel> channels;
+    const char* says;
+  };
+  const Case cases[] = {
+      {{}, "at least one"},
+      {{Channel::kDimmer, Channel::kPanFine}, "'pan_fine' (+1) needs 'pan'"},
+      {{Channel::kTilt, Channel::kRollFine}, "'roll_fine' (+1) needs 'roll'"},
+      {{Channel::kPan, Channel::kTilt, Channel::kPan}, "'pan' is listed twice (+0 and +2)"},
+      {{Channel::kFlags, Channel::kPan}, "needs 'dimmer'"},
+  };
+  for (const Case& c : cases) {
+    RegisterLayout layout;
+    std::string error;
+    EXPECT_FALSE(RegisterLayout::FromChannels(c.channels, &layout, &error)) << c.says;
+    EXPECT_NE(error.find(c.says), std::string::npos) << error;
+  }
+  Channel ch = Channel::kDimmer;
+  for (const char* name : {"dimmer", "pan", "pan_fine", "tilt", "tilt_fine", "roll", "roll_fine", "r", "g", "b",
+                           "profile", "flags"}) {
+    ASSERT_TRUE(ChannelFromName(name, &ch)) << name;
+    EXPECT_STREQ(ChannelName(ch), name);
+  }
+  EXPECT_FALSE(ChannelFromName("zoom", &ch));
+}
+
+TEST(RegisterLayout, CoarseAndFineBytesMakeThe16BitValue) {
+  RegisterLayout layout;
+  std::string error;
+  ASSERT_TRUE(RegisterLayout::FromChannels({Channel::kPanFine, Channel::kRoll, Channel::kPan}, &layout, &error))
+      << error;
+  uint16_t block[3] = {};
+  for (int v = 0; v <= 65535; v += 257 + 3) {
+    layout.PutAngle16(Channel::kPan, static_cast<uint16_t>(v), block);
+    EXPECT_EQ(block[2], v >> 8);    // coarse
+    EXPECT_EQ(block[0], v & 0xFF);  // fine
+    EXPECT_EQ(layout.Angle16(block, Channel::kPan), v);
+  }
+  layout.PutAngle16(Channel::kRoll, 40000, block);  // roll alone: one 16-bit register
+  EXPECT_EQ(block[1], 40000);
+  EXPECT_EQ(layout.Angle16(block, Channel::kRoll), 40000);
+  EXPECT_TRUE(layout.IsByte(0));
+  EXPECT_TRUE(layout.IsByte(2));
+  EXPECT_FALSE(layout.IsByte(1));
+  // A poller's peer may hold more than a byte: it counts as 255.
+  const uint16_t wide[3] = {300, 0, 1000};
+  EXPECT_EQ(layout.Angle16(wide, Channel::kPan), 0xFFFF);
+}
+
+TEST(RegisterMap, ALayoutWithRollAndFineBytesChecksEncodesAndDecodes) {
+  const RegisterMap map = MapOf(LayoutPatch());
+  EXPECT_EQ(map.holding_count(), 18);
+  EXPECT_EQ(map.CheckWrite(1, 255), 0);                       // pan coarse
+  EXPECT_EQ(map.CheckWrite(1, 256), kExceptionIllegalValue);  // a byte, not a 16-bit value
+  EXPECT_EQ(map.CheckWrite(2, 256), kExceptionIllegalValue);  // pan fine
+  EXPECT_EQ(map.CheckWrite(5, 65535), 0);                     // roll: 16-bit
+  EXPECT_EQ(map.CheckWrite(9, 2), kExceptionIllegalValue);    // flags
+  EXPECT_EQ(map.CheckWrite(10 + kRegPan, 65535), 0);          // wash: the standard block
+  EXPECT_EQ(map.CheckWrite(18, 0), kExceptionIllegalAddress);
+
+  // Encode shows a state; decoding a change from it gives the same degrees
+  // as the 16-bit value over the ranges (pan 630, tilt 265 from the bake).
+  FixtureState state{};
+  state.pan_deg = Q16_16::FromRaw(-(100 << 16) - 1234);
+  state.tilt_deg = Q16_16::FromInt(30);
+  state.roll_deg = Q16_16::FromInt(-90);
+  state.dimmer = Q1_15::FromRaw(32767);
+  uint16_t before[10] = {}, after[10] = {};
+  map.Encode(state, 0, before);
+  const uint16_t pan16 = RegisterFromAngleQ16(state.pan_deg.raw(), 630 << 16);
+  EXPECT_EQ(before[1], pan16 >> 8);
+  EXPECT_EQ(before[2], pan16 & 0xFF);
+  EXPECT_EQ(before[5], 32768 - 16384);  // -90 of 360
+  EXPECT_EQ(before[9], kFlagOn);
+  std::copy(before, before + 10, after);
+  after[2] ^= 1;  // only the pan's fine byte moves
+  after[5] = 32768 + 8192;
+  ParamChange out[kParamCount];
+  size_t n = map.DecodeChanges(0, before, after, 7, out);
+  ASSERT_EQ(n, 2u);
+  EXPECT_EQ(out[0].param, Param::kPan);
+  EXPECT_EQ(out[0].value, AngleQ16FromRegister(static_cast<uint16_t>(pan16 ^ 1), 630 << 16));
+  // One console step is 630/65536 degrees = 630 Q16.16 LSBs: Encode picks
+  // the nearest value (within half a step), the fine byte moves one step.
+  const int32_t shown_pan = AngleQ16FromRegister(pan16, 630 << 16);
+  EXPECT_LE(std::abs(shown_pan - state.pan_deg.raw()), 315 + 1);
+  EXPECT_NEAR(std::abs(out[0].value - shown_pan), 630, 1);
+  EXPECT_EQ(out[1].param, Param::kRoll);
+  EXPECT_EQ(out[1].value, 45 << 16);
+  // Every parameter moving: dimmer, pan, tilt, roll, r, g, b, in that order.
+  const uint16_t all[10] = {100, 1, 2, 3, 4, 5, 6, 7, 8, 1};
+  n = map.DecodeChanges(0, before, all, 0, out);
+  ASSERT_EQ(n, static_cast<size_t>(kParamCount));
+  const Param order[kParamCount] = {Param::kDimmer, Param::kPan, Param::kTilt, Param::kRoll,
+                                    Param::kRed,    Param::kGreen, Param::kBlue};
+  for (int i = 0; i < kParamCount; ++i) EXPECT_EQ(out[i].param, order[i]) << i;
+  EXPECT_EQ(out[1].value, AngleQ16FromRegister(0x0102, 630 << 16));
+  EXPECT_EQ(out[2].value, AngleQ16FromRegister(0x0304, 265 << 16));
 }
 
 TEST(RegisterInput, CoalescesToTheNewestValues) {

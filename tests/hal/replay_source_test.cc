@@ -32,6 +32,24 @@ TEST(ParamText, ParsesEachParameterInItsFormat) {
   EXPECT_EQ(c[1].value, 16384);
   EXPECT_EQ(c[2].param, Param::kBlue);
   EXPECT_EQ(c[2].value, 0);
+  ASSERT_EQ(ParseParamText("spot1.roll=-37.25", 0, c, &error), 1) << error;
+  EXPECT_EQ(c[0].param, Param::kRoll);
+  EXPECT_EQ(c[0].value, -37 * 65536 - 16384);
+  EXPECT_TRUE(IsAngle(Param::kRoll));
+  EXPECT_STREQ(ParamName(Param::kRoll), "roll");
+}
+
+TEST(ParamText, AngleRangeErrorsSayWhichParameterAndTheUnit) {
+  ParamChange c[3];
+  std::string error;
+  ASSERT_EQ(ParseParamText("spot1.roll=720", 0, c, &error), 1);  // the end of the range is inside
+  for (const char* param : {"pan", "tilt", "roll"}) {
+    const std::string text = std::string("spot1.") + param + "=-720.5";
+    EXPECT_EQ(ParseParamText(text, 0, c, &error), 0) << text;
+    EXPECT_EQ(error, "'" + text + "': " + param + " must be in -720..720 degrees");
+  }
+  EXPECT_EQ(ParseParamText("spot1.zoom=1", 0, c, &error), 0);
+  EXPECT_NE(error.find("(pan, tilt, roll, dimmer, r, g, b, colour)"), std::string::npos) << error;
 }
 
 TEST(ParamText, RejectsBadTextWithAMessage) {
@@ -53,9 +71,13 @@ TEST(ReplayScript, ParsesTimedChangesInOrder) {
       "0     a.dimmer=1   b.pan=10\n"
       "\n"
       "0.5   b.pan=20 # half a second in\n"
-      "2     b.colour=1,0,0\n";
+      "2     b.colour=1,0,0\n"
+      "2.25  b.roll=90\n";
   ASSERT_TRUE(ParseReplayScript(text, "show.replay", &changes).ok());
-  ASSERT_EQ(changes.size(), 6u);
+  ASSERT_EQ(changes.size(), 7u);
+  EXPECT_EQ(changes[6].time_us, 2250000);
+  EXPECT_EQ(changes[6].param, Param::kRoll);
+  EXPECT_EQ(changes[6].value, 90 * 65536);
   EXPECT_EQ(changes[2].time_us, 500000);
   EXPECT_EQ(changes[2].value, 20 * 65536);
   EXPECT_EQ(changes[5].time_us, 2000000);
@@ -74,6 +96,9 @@ TEST(ReplayScript, ErrorsNameFileAndLine) {
   EXPECT_NE(st.message().find("s:1:"), std::string::npos) << st.message();
   st = ParseReplayScript("3\n", "s", &changes);
   EXPECT_FALSE(st.ok());
+  st = ParseReplayScript("0 a.pan=1\n1 a.roll=900\n", "s", &changes);
+  EXPECT_NE(st.message().find("s:2:"), std::string::npos) << st.message();
+  EXPECT_NE(st.message().find("roll must be in -720..720 degrees"), std::string::npos) << st.message();
 }
 
 TEST(ReplaySource, PollsDueChangesAndKeepsTheRestQueued) {

@@ -16,21 +16,6 @@
 #include "relight/hal/modbus_poller.h"
 
 namespace relight::hal {
-namespace {
-
-int OffsetOf(Param param) {
-  switch (param) {
-    case Param::kDimmer: return kRegDimmer;
-    case Param::kPan: return kRegPan;
-    case Param::kTilt: return kRegTilt;
-    case Param::kRed: return kRegRed;
-    case Param::kGreen: return kRegGreen;
-    case Param::kBlue: return kRegBlue;
-  }
-  return kRegDimmer;
-}
-
-}  // namespace
 
 struct ModbusPoller::Impl {
   ModbusPollerConfig config;
@@ -164,7 +149,13 @@ Status ModbusPoller::DoStart() {
       return Status(StatusCode::kNotFound, "modbus-poller: map entry for register " + std::to_string(e.peer_register) +
                                                ": no fixture '" + e.fixture + "'");
     }
-    m.target.push_back(map.fixture(fixture).modbus_base + OffsetOf(e.param));
+    const int offset = map.fixture(fixture).layout.OffsetOf(e.channel);
+    if (offset < 0) {
+      return Status(StatusCode::kInvalidArgument, "modbus-poller: map entry for register " +
+                                                      std::to_string(e.peer_register) + ": fixture '" + e.fixture +
+                                                      "' has no '" + ChannelName(e.channel) + "' register");
+    }
+    m.target.push_back(map.fixture(fixture).modbus_base + offset);
     lo = e.peer_register < lo ? e.peer_register : lo;
     hi = e.peer_register > hi ? e.peer_register : hi;
   }

@@ -14,13 +14,12 @@ namespace relight::hal {
 
 struct ModbusRtuServer::Impl {
   ModbusRtuConfig config;
-  RegisterBank bank;
+  RegisterBank& bank;
   modbus_t* ctx = nullptr;
   std::thread thread;
   std::atomic<bool> stop{false};
 
-  Impl(ModbusRtuConfig c, const RegisterMap& map, std::vector<uint16_t> initial)
-      : config(std::move(c)), bank(map, std::move(initial)) {}
+  Impl(ModbusRtuConfig c, RegisterBank& b) : config(std::move(c)), bank(b) {}
 
   void Run() {
     uint8_t req[MODBUS_RTU_MAX_ADU_LENGTH + 8];
@@ -50,12 +49,9 @@ struct ModbusRtuServer::Impl {
 };
 
 ModbusRtuServer::ModbusRtuServer(ModbusRtuConfig config, const RegisterMap& map, std::vector<uint16_t> initial)
-    : impl_(std::make_unique<Impl>(std::move(config), map, std::move(initial))) {}
+    : ModbusServer(map, std::move(initial)), impl_(std::make_unique<Impl>(std::move(config), bank())) {}
 
 ModbusRtuServer::~ModbusRtuServer() { impl_->Shutdown(); }
-
-ModbusServerCounters ModbusRtuServer::counters() const { return impl_->bank.counters(); }
-std::vector<uint16_t> ModbusRtuServer::holding_registers() const { return impl_->bank.input().Snapshot(); }
 
 Status ModbusRtuServer::DoStart() {
   Impl& m = *impl_;
@@ -87,12 +83,6 @@ Status ModbusRtuServer::DoStart() {
       m.config.baud, m.config.data_bits, m.config.parity, m.config.stop_bits);
   return Status::Ok();
 }
-
-size_t ModbusRtuServer::DoPoll(int64_t /*now_us*/, ParamChange* out, size_t capacity) {
-  return impl_->bank.input().Collect(out, capacity);
-}
-
-void ModbusRtuServer::DoOnFrameOut(uint32_t frame, uint32_t latency_us) { impl_->bank.PublishFrame(frame, latency_us); }
 
 void ModbusRtuServer::DoStop() { impl_->Shutdown(); }
 

@@ -44,7 +44,7 @@ std::string PeerName(const sockaddr_in& addr) {
 
 struct ModbusTcpServer::Impl {
   ModbusTcpConfig config;
-  RegisterBank bank;
+  RegisterBank& bank;
   modbus_t* ctx = nullptr;
   int listen_fd = -1;
   int wake[2] = {-1, -1};
@@ -53,8 +53,7 @@ struct ModbusTcpServer::Impl {
   std::vector<std::unique_ptr<Client>> clients;
   std::vector<in_addr_t> allow;
 
-  Impl(ModbusTcpConfig c, const RegisterMap& map, std::vector<uint16_t> initial)
-      : config(std::move(c)), bank(map, std::move(initial)) {}
+  Impl(ModbusTcpConfig c, RegisterBank& b) : config(std::move(c)), bank(b) {}
 
   void Close(size_t i, const char* why) {
     Log(LogLevel::kInfo, "modbus-tcp: client %s %s", clients[i]->peer.c_str(), why);
@@ -188,13 +187,11 @@ struct ModbusTcpServer::Impl {
 };
 
 ModbusTcpServer::ModbusTcpServer(ModbusTcpConfig config, const RegisterMap& map, std::vector<uint16_t> initial)
-    : impl_(std::make_unique<Impl>(std::move(config), map, std::move(initial))) {}
+    : ModbusServer(map, std::move(initial)), impl_(std::make_unique<Impl>(std::move(config), bank())) {}
 
 ModbusTcpServer::~ModbusTcpServer() { impl_->Shutdown(); }
 
 int ModbusTcpServer::port() const { return impl_->port; }
-ModbusServerCounters ModbusTcpServer::counters() const { return impl_->bank.counters(); }
-std::vector<uint16_t> ModbusTcpServer::holding_registers() const { return impl_->bank.input().Snapshot(); }
 
 Status ModbusTcpServer::DoStart() {
   Impl& m = *impl_;
@@ -232,12 +229,6 @@ Status ModbusTcpServer::DoStart() {
       m.port, m.bank.input().map().fixture_count(), m.bank.input().map().holding_count() - 1);
   return Status::Ok();
 }
-
-size_t ModbusTcpServer::DoPoll(int64_t /*now_us*/, ParamChange* out, size_t capacity) {
-  return impl_->bank.input().Collect(out, capacity);
-}
-
-void ModbusTcpServer::DoOnFrameOut(uint32_t frame, uint32_t latency_us) { impl_->bank.PublishFrame(frame, latency_us); }
 
 void ModbusTcpServer::DoStop() { impl_->Shutdown(); }
 

@@ -72,14 +72,15 @@ class Table {
     return v;
   }
 
-  double Number(const char* key, double fallback, double lo, double hi) const {
+  // `unit` (e.g. " degrees") follows the range in messages.
+  double Number(const char* key, double fallback, double lo, double hi, const char* unit = "") const {
     const toml::node* node = t_.get(key);
     if (node == nullptr) return fallback;
     if (!node->is_number()) Fail(node, std::string("'") + key + "' must be a number");
     const double v = *node->value<double>();
     if (!std::isfinite(v) || v < lo || v > hi) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "'%s' must be in %g..%g, got %g", key, lo, hi, v);
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "'%s' must be in %g..%g%s, got %g", key, lo, hi, unit, v);
       Fail(node, buf);
     }
     return v;
@@ -111,13 +112,46 @@ int32_t DegreesQ16(double deg) { return static_cast<int32_t>(std::llround(deg * 
 int32_t LevelQ15(double level) { return static_cast<int32_t>(std::lround(level * 32767.0)); }
 
 Param ParseParamName(const Table& t, const char* key, const std::string& name) {
-  if (name == "pan") return Param::kPan;
-  if (name == "tilt") return Param::kTilt;
-  if (name == "dimmer") return Param::kDimmer;
-  if (name == "r") return Param::kRed;
-  if (name == "g") return Param::kGreen;
-  if (name == "b") return Param::kBlue;
-  t.Fail(t.Node(key), std::string("'") + key + "' must be one of pan, tilt, dimmer, r, g, b; got '" + name + "'");
+  Param param = Param::kDimmer;
+  if (!ParamFromName(name, &param)) {
+    t.Fail(t.Node(key),
+           std::string("'") + key + "' must be one of pan, tilt, roll, dimmer, r, g, b; got '" + name + "'");
+  }
+  return param;
+}
+
+// A poller entry drives one of the fixture's parameter registers.
+Channel ParseChannelName(const Table& t, const char* key, const std::string& name) {
+  Channel channel = Channel::kDimmer;
+  if (!ChannelFromName(name, &channel) || channel == Channel::kProfile || channel == Channel::kFlags) {
+    t.Fail(t.Node(key), std::string("'") + key +
+                            "' must be one of dimmer, pan, pan_fine, tilt, tilt_fine, roll, roll_fine, r, g, b; got '" +
+                            name + "'");
+  }
+  return channel;
+}
+
+// `registers = ["dimmer", "pan", "pan_fine", ...]`: the fixture's layout
+// (register_layout.h); the standard 8 when absent.
+RegisterLayout ParseLayout(const Table& t) {
+  const toml::array* list = t.Array("registers");
+  if (list == nullptr) return RegisterLayout();
+  std::vector<Channel> channels;
+  for (const toml::node& item : *list) {
+    const auto name = item.value<std::string>();
+    if (!item.is_string() || !name) {
+      t.Fail(&item, "registers must list channel names as strings, e.g. [\"dimmer\", \"pan\", \"pan_fine\"]");
+    }
+    Channel channel = Channel::kDimmer;
+    if (!ChannelFromName(*name, &channel)) {
+      t.Fail(&item, "registers: unknown channel '" + *name + "' (known: " + ChannelNames() + ")");
+    }
+    channels.push_back(channel);
+  }
+  RegisterLayout layout;
+  std::string error;
+  if (!RegisterLayout::FromChannels(channels, &layout, &error)) t.Fail(t.Node("registers"), "registers: " + error);
+  return layout;
 }
 
 // Each [[name]] entry, or an error if `name` is not an array of tables.
@@ -145,7 +179,8 @@ const toml::table* Section(const toml::table& root, const std::string& where, co
 }
 
 void ParseFixture(const Table& t, Patch* patch) {
-  t.CheckKeys({"name", "modbus_base", "pan_range_deg", "tilt_range_deg", "dimmer_curve", "fade_ms"});
+  t.CheckKeys({"name", "modbus_base", "registers", "pan_range_deg", "tilt_range_deg", "roll_range_deg", "dimmer_curve",
+               "fade_ms"});
   FixturePatch f;
   f.line = t.line();
   f.name = t.String("name", "", true);
@@ -155,9 +190,16 @@ void ParseFixture(const Table& t, Patch* patch) {
     t.Fail(t.Node("name"), "name '" + f.name + "' must be 1.." + std::to_string(kMaxFixtureName) +
                                " of A-Z a-z 0-9 _ -");
   }
-  f.modbus_base = static_cast<int>(t.Int("modbus_base", -1, 0, 65535 - 7));
-  f.pan_range_q16 = DegreesQ16(t.Number("pan_range_deg", 540, 1, 1440));
-  f.tilt_range_q16 = DegreesQ16(t.Number("tilt_range_deg", 270, 1, 1440));
+  f.layout = ParseLayout(t);
+  f.modbus_base = static_cast<int>(t.Int("modbus_base", -1, 0, 65535));
+  if (f.modbus_base + f.layout.size() > 65536) {
+    t.Fail(t.Node("modbus_base"), "modbus_base " + std::to_string(f.modbus_base) + " with " +
+                                      std::to_string(f.layout.size()) + " registers passes 65535");
+  }
+  // Absent pan and tilt ranges stay 0: ResolvePatch takes the luminaire's.
+  f.pan_range_q16 = DegreesQ16(t.Number("pan_range_deg", 0, 1, 1440, " degrees"));
+  f.tilt_range_q16 = DegreesQ16(t.Number("tilt_range_deg", 0, 1, 1440, " degrees"));
+  f.roll_range_q16 = DegreesQ16(t.Number("roll_range_deg", 360, 1, 1440, " degrees"));
   const std::string curve = t.String("dimmer_curve", "linear");
   if (curve == "linear") {
     f.dimmer_curve = DimmerCurve::kLinear;
@@ -243,7 +285,7 @@ void ParsePoller(const Table& t, const std::string& where, Patch* patch) {
     entry.line = static_cast<int>(item.source().begin.line);
     entry.peer_register = static_cast<int>(e.Int("register", 0, 0, 65535, true));
     entry.fixture = e.String("fixture", "", true);
-    entry.param = ParseParamName(e, "param", e.String("param", "", true));
+    entry.channel = ParseChannelName(e, "param", e.String("param", "", true));
     c.map.push_back(entry);
   }
   int lo = 65535, hi = 0;
@@ -301,10 +343,9 @@ void ParseEncoder(const Table& t, Patch* patch) {
   if (e.line_a == e.line_b) t.Fail(t.Node("line_b"), "line_a and line_b must differ");
   e.fixture = t.String("fixture", "", true);
   e.param = ParseParamName(t, "param", t.String("param", "dimmer"));
-  const bool angle = e.param == Param::kPan || e.param == Param::kTilt;
-  if (angle) {
-    e.step = DegreesQ16(t.Number("step", 1.0, 0.001, 90.0));
-    e.start = DegreesQ16(t.Number("start", 0.0, -720.0, 720.0));
+  if (IsAngle(e.param)) {
+    e.step = DegreesQ16(t.Number("step", 1.0, 0.001, 90.0, " degrees"));
+    e.start = DegreesQ16(t.Number("start", 0.0, -720.0, 720.0, " degrees"));
   } else {
     e.step = LevelQ15(t.Number("step", 0.01, 1.0 / 32767.0, 1.0));
     e.start = LevelQ15(t.Number("start", 0.0, 0.0, 1.0));

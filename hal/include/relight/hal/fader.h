@@ -1,6 +1,7 @@
-// Fixture parameters on their way to the engine: each new target is reached
-// by a linear ramp over the fixture's fade time (patch.h fade_ms), in integer
-// microseconds; then the fixture's dimmer curve (linear or square law) maps
+// Fixture parameters on their way to the engine: each new target (levels, and
+// pan, tilt and roll in degrees) is reached by a linear ramp over the
+// fixture's fade time (patch.h fade_ms), in integer microseconds; then the
+// fixture's dimmer curve (linear or square law) maps
 // the dimmer's control level to light output. Integer-only, no heap after
 // construction.
 //
@@ -33,8 +34,8 @@ class Fader {
   // has no fixture of that name.
   bool SetTarget(const ParamChange& change, int64_t now_us);
   // Output values that changed since the last call (dimmer after the curve),
-  // as changes for the engine; at most 6 per fixture. out must hold
-  // 6 * slot_count().
+  // as changes for the engine; at most kParamCount per fixture. out must
+  // hold kParamCount * slot_count().
   size_t Step(int64_t now_us, ParamChange* out);
   // True when no ramp is still moving.
   bool Idle(int64_t now_us) const;
@@ -52,7 +53,7 @@ class Fader {
   };
   struct Slot {
     FixturePatch patch;
-    Ramp ramps[6];  // indexed by Param
+    Ramp ramps[kParamCount];  // indexed by Param
   };
   static int32_t ValueAt(const Ramp& ramp, int64_t now_us);
 

@@ -10,27 +10,22 @@
 #include <memory>
 #include <vector>
 
-#include "relight/hal/input_source.h"
 #include "relight/hal/modbus_server.h"
 #include "relight/hal/patch.h"
 #include "relight/hal/register_map.h"
 
 namespace relight::hal {
 
-class ModbusRtuServer final : public InputSource {
+class ModbusRtuServer final : public ModbusServer {
  public:
+  // `initial` as for ModbusServer.
   ModbusRtuServer(ModbusRtuConfig config, const RegisterMap& map, std::vector<uint16_t> initial);
   ~ModbusRtuServer() override;
-
-  ModbusServerCounters counters() const;
-  std::vector<uint16_t> holding_registers() const;
 
  private:
   // Start: kNotFound / kIoError naming the device if it cannot be opened.
   Status DoStart() override;
-  size_t DoPoll(int64_t now_us, ParamChange* out, size_t capacity) override;
   const char* DoName() const override { return "modbus-rtu"; }
-  void DoOnFrameOut(uint32_t frame, uint32_t latency_us) override;
   void DoStop() override;
 
   struct Impl;

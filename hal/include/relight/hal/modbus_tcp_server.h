@@ -15,30 +15,24 @@
 #include <memory>
 #include <vector>
 
-#include "relight/hal/input_source.h"
 #include "relight/hal/modbus_server.h"
 #include "relight/hal/patch.h"
 #include "relight/hal/register_map.h"
 
 namespace relight::hal {
 
-class ModbusTcpServer final : public InputSource {
+class ModbusTcpServer final : public ModbusServer {
  public:
-  // `initial`: the holding registers' starting values (map.holding_count()),
-  // e.g. RegisterMap::Encode of the engine's state; zeros if empty.
+  // `initial` as for ModbusServer.
   ModbusTcpServer(ModbusTcpConfig config, const RegisterMap& map, std::vector<uint16_t> initial);
   ~ModbusTcpServer() override;
 
   int port() const;  // the port listened on, after Start() (config port 0 = any free one)
-  ModbusServerCounters counters() const;
-  std::vector<uint16_t> holding_registers() const;
 
  private:
   // Start: kIoError naming the address if it cannot listen.
   Status DoStart() override;
-  size_t DoPoll(int64_t now_us, ParamChange* out, size_t capacity) override;
   const char* DoName() const override { return "modbus-tcp"; }
-  void DoOnFrameOut(uint32_t frame, uint32_t latency_us) override;
   void DoStop() override;
 
   struct Impl;

@@ -6,8 +6,10 @@
 //   [[fixture]]
 //   name = "ceiling_spot"
 //   modbus_base = 0        # first holding register, PDU (0-based) address
-//   pan_range_deg = 540    # 16-bit pan spans this, 32768 = 0 degrees
-//   tilt_range_deg = 270
+//   registers = ["dimmer", "pan", "pan_fine", "tilt", "tilt_fine", "roll"]  # default: the standard 8
+//   pan_range_deg = 540    # 16-bit pan spans this, 32768 = 0 degrees (default: the bake's)
+//   tilt_range_deg = 270   # (default: the bake's)
+//   roll_range_deg = 360   # (default 360)
 //   dimmer_curve = "square"
 //   fade_ms = 200
 //
@@ -23,6 +25,7 @@
 #include <vector>
 
 #include "relight/hal/param_change.h"
+#include "relight/hal/register_layout.h"
 #include "relight/status.h"
 
 namespace relight::hal {
@@ -31,9 +34,14 @@ enum class DimmerCurve : uint8_t { kLinear, kSquare };
 
 struct FixturePatch {
   std::string name;
-  int modbus_base = -1;                // first of its 8 holding registers (PDU address); -1: next free block
-  int32_t pan_range_q16 = 540 << 16;   // degrees (Q16.16) spanned by the 16-bit pan register
-  int32_t tilt_range_q16 = 270 << 16;  // degrees (Q16.16) spanned by the 16-bit tilt register
+  int modbus_base = -1;                // first of its holding registers (PDU address); -1: next free block
+  RegisterLayout layout;               // what each register from modbus_base means (default: the standard 8)
+  // Degrees (Q16.16) spanned by the 16-bit pan, tilt and roll values, 32768 = 0.
+  // Pan and tilt 0: the luminaire's own console ranges (bake.h), which
+  // ResolvePatch fills in, so registers mean what Engine::SetPanTilt16 means.
+  int32_t pan_range_q16 = 0;
+  int32_t tilt_range_q16 = 0;
+  int32_t roll_range_q16 = 360 << 16;
   DimmerCurve dimmer_curve = DimmerCurve::kLinear;
   int32_t fade_ms = 0;                 // linear ramp to each new value; 0 = jump
   int line = 0;                        // where it was declared (0: not from a file)
@@ -58,12 +66,13 @@ struct ModbusRtuConfig {
   int unit_id = 1;                     // our slave address, 1..247
 };
 
-// One register of the polled peer and what it drives. Values are read as
-// in our own map (docs/modbus.md): 16-bit dimmer, pan, tilt; 8-bit r, g, b.
+// One register of the polled peer and what it drives: the fixture's
+// register for `channel` (which its layout must have). Values are read as
+// that register of our own map is (docs/modbus.md); bytes above 255 clamp.
 struct PollEntry {
   int peer_register = 0;               // PDU address on the peer
   std::string fixture;
-  Param param = Param::kDimmer;
+  Channel channel = Channel::kDimmer;  // not profile or flags
   int line = 0;
 };
 
@@ -97,7 +106,7 @@ struct GpioEncoderConfig {
   int line_a = 0, line_b = 0;
   std::string fixture;
   Param param = Param::kDimmer;
-  int32_t step = 327;                  // per quadrature count: Q1.15 level, or Q16.16 degrees for pan/tilt
+  int32_t step = 327;                  // per quadrature count: Q1.15 level, or Q16.16 degrees for pan/tilt/roll
   int32_t start = 0;                   // value before the first turn (same format)
   int config_line = 0;
 };
@@ -118,11 +127,21 @@ struct Patch {
 Status ParsePatch(const std::string& text, const std::string& where, Patch* out);
 Status LoadPatch(const std::string& path, Patch* out);
 
+// What ResolvePatch needs of a bake's luminaire: its name and the console
+// ranges of its 16-bit pan and tilt (BakeLuminaire::pan_range, tilt_range).
+struct LuminaireConsole {
+  std::string name;
+  int32_t pan_range_q16 = 540 << 16;
+  int32_t tilt_range_q16 = 270 << 16;
+};
+
 // Checks the patch against the bake's luminaires and completes it: every
 // fixture named must exist; luminaires the patch does not name are appended
-// with default settings; fixtures without modbus_base get the next free
-// 8-register block; blocks must not overlap or pass 65535. Buttons, encoders
-// and the poller map must name known fixtures.
-Status ResolvePatch(const std::vector<std::string>& luminaire_names, Patch* patch);
+// with default settings; pan and tilt ranges the patch leaves out become the
+// luminaire's; fixtures without modbus_base get the next free block (as many
+// registers as their layout); blocks must not overlap or pass 65535. Buttons,
+// encoders and the poller map must name known fixtures, and poller entries a
+// register the fixture's layout has. Errors name file:line.
+Status ResolvePatch(const std::vector<LuminaireConsole>& luminaires, Patch* patch);
 
 }  // namespace relight::hal

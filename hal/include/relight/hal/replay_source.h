@@ -4,6 +4,7 @@
 //   # seconds  changes (FIXTURE.PARAM=VALUE, as --set)
 //   0.0   ceiling_spot.pan=0  ceiling_spot.tilt=20
 //   1.5   ceiling_spot.pan=35 corner_uplight.colour=1,0.55,0.25
+//   2.0   ceiling_spot.roll=90   # degrees about the beam axis
 //
 // Times are seconds from the start of the script, non-decreasing. The whole
 // script is read and checked at Start(); an error names file:line.
