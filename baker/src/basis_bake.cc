@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bake_hierarchy.h"
 #include "bake_lid.h"
 #include "baker_core.h"
 #include "luminaire_basis.h"
@@ -177,7 +178,13 @@ relight::Bake Baker::Bake() {
   // A white that rounds to 0 in LightQ12 keeps the format's default.
   if (bake.white_luminance <= 0) bake.white_luminance = relight::Bake().white_luminance;
 
-  if (core.hierarchical_solver) impl_->report.sweeps = core.hierarchical_solver->max_sweeps_used();
+  if (core.hierarchical_solver) {
+    impl_->report.sweeps = core.hierarchical_solver->max_sweeps_used();
+    if (core.options.store_hierarchy) {
+      bake.hierarchy = MakeBakeHierarchy(core.mesh, core.hierarchical_solver->hierarchy(),
+                                         core.hierarchical_solver->links());
+    }
+  }
   impl_->report.total_seconds += total.seconds();
   return bake;
 }

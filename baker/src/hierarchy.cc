@@ -138,14 +138,13 @@ class SurfaceTreeBuilder {
     std::vector<LeafPos> leaves;
   };
 
-  const Vec3& Vertex(const P2& p) const {
+  uint32_t VertexIndex(const P2& p) const {
     const int a = static_cast<int>(std::lround(p.x));
     const int b = static_cast<int>(std::lround(p.y));
-    if (!grid_.triangle) {
-      return mesh_.positions[grid_.first_vertex + static_cast<uint32_t>(b * (grid_.nu + 1) + a)];
-    }
-    return mesh_.positions[row_start_[b] + static_cast<uint32_t>(a)];
+    if (!grid_.triangle) return grid_.first_vertex + static_cast<uint32_t>(b * (grid_.nu + 1) + a);
+    return row_start_[b] + static_cast<uint32_t>(a);
   }
+  const Vec3& Vertex(const P2& p) const { return mesh_.positions[VertexIndex(p)]; }
 
   // Halves a region along the grid direction in which it is longest (in
   // metres). Both halves hold leaves: the cut is a grid line strictly inside.
@@ -200,15 +199,16 @@ class SurfaceTreeBuilder {
       const Patch& p = mesh_.patches[leaves[0].patch];
       n.patch = leaves[0].patch;
       n.corner_count = p.corner_count;
-      for (int k = 0; k < p.corner_count; ++k) n.corners[k] = mesh_.positions[p.vertices[k]];
+      for (int k = 0; k < p.corner_count; ++k) n.corner_vertices[k] = p.vertices[k];
     } else {
       if (poly.size() < 3 || poly.size() > static_cast<size_t>(kMaxNodeCorners)) {
         throw std::logic_error("hierarchy: a node polygon has " + std::to_string(poly.size()) +
                                " corners");
       }
       n.corner_count = static_cast<int>(poly.size());
-      for (size_t k = 0; k < poly.size(); ++k) n.corners[k] = Vertex(poly[k]);
+      for (size_t k = 0; k < poly.size(); ++k) n.corner_vertices[k] = VertexIndex(poly[k]);
     }
+    for (int k = 0; k < n.corner_count; ++k) n.corners[k] = mesh_.positions[n.corner_vertices[k]];
     Vec3 weighted{0, 0, 0};
     for (const LeafPos& l : leaves) {
       const Patch& p = mesh_.patches[l.patch];

@@ -25,6 +25,7 @@ constexpr int kMaxNodeCorners = 6;
 
 struct HierarchyNode {
   std::array<Vec3, kMaxNodeCorners> corners{};  // convex, CCW from the lit side
+  std::array<uint32_t, kMaxNodeCorners> corner_vertices{};  // the mesh vertices at corners
   int corner_count = 0;
   Vec3 centre{};  // area centroid, m
   Vec3 normal{};  // unit, the surface's

@@ -22,18 +22,18 @@ std::string NotUnit(const char* what, size_t index, const std::vector<int16_t>& 
                    static_cast<ull>(index), v[3 * index], v[3 * index + 1], v[3 * index + 2]);
 }
 
-std::string CountMismatch(const char* what, size_t have, const char* expected_how,
-                          uint64_t expected) {
-  return StrFormat("%s has %llu values, expected %s = %llu", what, static_cast<ull>(have),
-                   expected_how, static_cast<ull>(expected));
-}
-
 std::string CheckLevelQ15(int16_t v, const char* what) {
   if (v < 0) return StrFormat("%s %d is outside [0, 32767] (Q1.15)", what, v);
   return "";
 }
 
 }  // namespace
+
+std::string CountMismatch(const char* what, size_t have, const char* expected_how,
+                          uint64_t expected) {
+  return StrFormat("%s has %llu values, expected %s = %llu", what, static_cast<ull>(have),
+                   expected_how, static_cast<ull>(expected));
+}
 
 std::string CheckName(const std::string& name, bool allow_empty) {
   if (name.empty()) return allow_empty ? "" : "name is empty";

@@ -15,6 +15,9 @@
 
 namespace relight::bake_format {
 
+// "what has N values, expected how = M".
+std::string CountMismatch(const char* what, size_t have, const char* expected_how,
+                          uint64_t expected);
 // Up to kMaxNameBytes of UTF-8 without control characters; empty only if allowed.
 std::string CheckName(const std::string& name, bool allow_empty);
 // Mantissa in [2^29, 2^30) with a bounded exponent, or the zero scale {0, 0}.
@@ -37,6 +40,13 @@ std::string CheckLidTable(const BakeLid& lid, int sh_degree);
 std::string CheckDirect(const BakeLightReceivers& rec, DirectMode mode, uint32_t receivers);
 // The SH basis of one luminaire on one receiver set.
 std::string CheckBasis(const BakeLightReceivers& rec, int sh_degree, uint32_t receivers);
+// The hierarchy's nodes against the mesh: array lengths, surface order, tree
+// structure (roots, parents, contiguous breadth-first children), corners,
+// areas, and leaves that cover every triangle exactly once.
+std::string CheckHierarchyNodes(const BakeHierarchy& h, const BakeMesh& mesh);
+// Its links against nodes that passed CheckHierarchyNodes: lengths, node
+// indices, order, surfaces, factors and gradients.
+std::string CheckHierarchyLinks(const BakeHierarchy& h);
 // Names must tell luminaires (and grids) apart: "" or the first duplicate.
 std::string CheckUniqueNames(const std::vector<const std::string*>& names, const char* kind);
 

@@ -1,4 +1,4 @@
-// On-disk layout of a bake file, format version 2: the constants the writer
+// On-disk layout of a bake file, format version 3: the constants the writer
 // and the reader share. docs/bake-format.md is the specification; keep the
 // two in step. Private to the runtime.
 #pragma once
@@ -7,16 +7,21 @@
 #include <cstdint>
 
 #include "bake_bytes.h"
+#include "relight/bake.h"
 #include "relight/sh_index.h"
 
 namespace relight::bake_format {
 
 // --- File header (28 bytes) and table of contents (36 bytes per section).
 inline constexpr uint8_t kMagic[8] = {'R', 'E', 'L', 'I', 'G', 'H', 'T', '\0'};
-inline constexpr uint32_t kVersion = 2;
+inline constexpr uint32_t kVersion = 3;
 // Version 1 files still read: their LUMI sections end after the LID samples
 // (no orientation, ranges or (C, gamma) table; defaults apply).
 inline constexpr uint32_t kOldestVersion = 1;
+// The writer stamps the lowest version that holds the bake: 2 without a
+// hierarchy, so readers that predate HIER and LINK still read those files.
+inline constexpr uint32_t kVersionWithoutHierarchy = 2;
+inline constexpr uint32_t kFirstVersionWithHierarchy = 3;
 inline constexpr size_t kVersionOffset = 8;
 inline constexpr size_t kSectionCountOffset = 12;
 inline constexpr size_t kFileSizeOffset = 16;
@@ -41,6 +46,8 @@ inline constexpr uint32_t kTagGrid = Fourcc('G', 'R', 'I', 'D');
 inline constexpr uint32_t kTagLumi = Fourcc('L', 'U', 'M', 'I');
 inline constexpr uint32_t kTagDirect = Fourcc('D', 'I', 'R', 'T');
 inline constexpr uint32_t kTagBasis = Fourcc('B', 'A', 'S', 'E');
+inline constexpr uint32_t kTagHierarchy = Fourcc('H', 'I', 'E', 'R');
+inline constexpr uint32_t kTagLinks = Fourcc('L', 'I', 'N', 'K');
 
 struct TocEntry {
   uint32_t tag = 0, flags = 0;
@@ -99,7 +106,14 @@ inline constexpr int64_t kUnitSquaredTolerance = int64_t{1} << 22;
 // zstd emits at best one 4-byte RLE block per 128 KiB (ratio 32768); twice
 // that is a safe bound on what an honest frame can expand to.
 inline constexpr uint64_t kMaxZstdExpansion = 65536;
-inline constexpr uint32_t kMaxSections = 2 + kMaxGrids + kMaxLuminaires * (1 + 2 * (1 + kMaxGrids));
+inline constexpr uint32_t kMaxSections =
+    2 + kMaxGrids + kMaxLuminaires * (1 + 2 * (1 + kMaxGrids)) + 2;
+// Hierarchy: an inner node has at least 2 children and a leaf at least one
+// triangle, so there are fewer than 2 T nodes.
+inline constexpr uint32_t kMinNodeCorners = 3;
+inline constexpr uint32_t kMinChildren = 2;
+inline constexpr uint64_t kMaxNodeAreaRaw = uint64_t{1} << 56;  // Q32.32: 2^24 m^2
+inline constexpr uint32_t kMaxLinks = 1u << 28;
 
 // --- Payload sizes in bytes (docs/bake-format.md, one table per section).
 inline constexpr uint64_t kStringBytes = 4;  // u32 length; the bytes follow
@@ -140,5 +154,13 @@ constexpr uint64_t DirectBytes(uint64_t receivers) {
 constexpr uint64_t BasisBytes(uint64_t terms, uint64_t receivers) {
   return kScaleBytes * 3 * terms + kBasisBytesPerValue * 3 * terms * receivers;
 }
+// HIER: count, then surface, parent, first child, child count, corner count,
+// corners, area, leaf triangle per node. LINK: count, then p, q, f_pq, f_qp,
+// g_pq, g_qp per link.
+inline constexpr uint64_t kCountBytes = 4;
+inline constexpr uint64_t kHierBytesPerNode = 2 + 4 + 4 + 1 + 1 + 4 * kBakeMaxNodeCorners + 8 + 4;
+inline constexpr uint64_t kLinkBytesPerLink = 4 * 4 + 4 * 4;
+constexpr uint64_t HierBytes(uint64_t nodes) { return kCountBytes + kHierBytesPerNode * nodes; }
+constexpr uint64_t LinkBytes(uint64_t links) { return kCountBytes + kLinkBytesPerLink * links; }
 
 }  // namespace relight::bake_format

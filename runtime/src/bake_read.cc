@@ -72,7 +72,9 @@ class Parser {
     for (const BakeLuminaire& lum : bake.luminaires) names.push_back(&lum.name);
     e = CheckUniqueNames(names, "luminaire");
     if (!e.empty()) return Corrupt("sections LUMI", e);
+    RELIGHT_RETURN_IF_ERROR(CheckSectionCount(bake));
     RELIGHT_RETURN_IF_ERROR(ParseReceivers(&bake));
+    if (hierarchy_index_ != 0) RELIGHT_RETURN_IF_ERROR(ParseHierarchy(&bake));
     *out = std::move(bake);
     return Status::Ok();
   }
@@ -404,18 +406,42 @@ class Parser {
     return StrFormat("section %s[lum %u '%s', set %u]", tag, l, lum.name.c_str(), set);
   }
 
+  // The luminaires fix the number of DIRT and BASE sections; HIER and LINK
+  // may follow them (version 3 on). Their sizes are checked here, before any
+  // of the big sections is decompressed.
+  Status CheckSectionCount(const Bake& bake) {
+    size_t expected = 2 + size_t{counts_.grids} + counts_.luminaires;
+    for (const BakeLuminaire& lum : bake.luminaires) {
+      expected += size_t{bake.receiver_set_count()} *
+                  (lum.direct_mode == DirectMode::kExactDirect ? 2 : 1);
+    }
+    const bool hierarchy_allowed = version_ >= kFirstVersionWithHierarchy;
+    if (hierarchy_allowed && toc_.size() == expected + 2) {
+      hierarchy_index_ = expected;
+      // Fewer than 2 T nodes (bake_format.h); the node count itself is checked after loading.
+      const uint64_t max_nodes = counts_.triangles == 0 ? 0 : 2 * uint64_t{counts_.triangles} - 1;
+      RELIGHT_RETURN_IF_ERROR(Expect(expected, kTagHierarchy, "section HIER", HierBytes(1),
+                                     HierBytes(max_nodes)));
+      return Expect(expected + 1, kTagLinks, "section LINK", LinkBytes(0), LinkBytes(kMaxLinks));
+    }
+    if (toc_.size() != expected) {
+      std::string also;
+      if (hierarchy_allowed) {
+        also = StrFormat(" (or %zu with HIER and LINK)", expected + 2);
+      } else if (toc_.size() == expected + 2) {
+        also = StrFormat(" (HIER and LINK need format version %u, the file has %u)",
+                         kFirstVersionWithHierarchy, version_);
+      }
+      return Corrupt("table of contents", StrFormat("%zu sections, the counts need %zu%s",
+                                                    toc_.size(), expected, also.c_str()));
+    }
+    return Status::Ok();
+  }
+
   // DIRT (exact direct only) then BASE, per luminaire per receiver set. All
   // their sizes are checked before the first one is decompressed.
   Status ParseReceivers(Bake* bake) {
     const uint32_t sets = bake->receiver_set_count();
-    size_t expected_sections = 2 + size_t{counts_.grids} + counts_.luminaires;
-    for (const BakeLuminaire& lum : bake->luminaires) {
-      expected_sections += size_t{sets} * (lum.direct_mode == DirectMode::kExactDirect ? 2 : 1);
-    }
-    if (toc_.size() != expected_sections) {
-      return Corrupt("table of contents", StrFormat("%zu sections, the counts need %zu",
-                                                    toc_.size(), expected_sections));
-    }
     for (int pass = 0; pass < 2; ++pass) {
       size_t index = 2 + size_t{counts_.grids} + counts_.luminaires;
       for (uint32_t l = 0; l < counts_.luminaires; ++l) {
@@ -481,12 +507,65 @@ class Parser {
     return Status::Ok();
   }
 
+  // Loads a section that starts with its item count; its raw size must be
+  // exactly what that count needs.
+  Status LoadCounted(size_t index, const std::string& label, uint64_t (*bytes)(uint64_t),
+                     const char* items, ByteReader* r, uint32_t* count) {
+    RELIGHT_RETURN_IF_ERROR(Load(index, label, r));
+    *count = r->Get<uint32_t>("count");
+    if (r->failed()) return Finish(*r, label);
+    const uint64_t raw = toc_[index].raw;
+    if (bytes(*count) != raw) {
+      return Corrupt(label, StrFormat("%u %s need %llu bytes, the section has %llu", *count, items,
+                                      static_cast<ull>(bytes(*count)), static_cast<ull>(raw)));
+    }
+    return Status::Ok();
+  }
+
+  // HIER then LINK, after every DIRT and BASE.
+  Status ParseHierarchy(Bake* bake) {
+    BakeHierarchy h;
+    std::string label = "section HIER";
+    ByteReader r(nullptr, 0);
+    uint32_t nodes = 0;
+    RELIGHT_RETURN_IF_ERROR(LoadCounted(hierarchy_index_, label, HierBytes, "nodes", &r, &nodes));
+    r.GetPlanar(&h.node_surface, nodes, 1, "node surface");
+    r.GetPlanar(&h.node_parent, nodes, 1, "node parent");
+    r.GetPlanar(&h.node_first_child, nodes, 1, "node first child");
+    r.GetPlanar(&h.node_child_count, nodes, 1, "node child count");
+    r.GetPlanar(&h.node_corner_count, nodes, 1, "node corner count");
+    r.GetPlanar(&h.node_corners, size_t{nodes} * kBakeMaxNodeCorners, kBakeMaxNodeCorners,
+                "node corners");
+    r.GetPlanar(&h.node_area, nodes, 1, "node area");
+    r.GetPlanar(&h.node_leaf_triangle, nodes, 1, "node leaf triangle");
+    RELIGHT_RETURN_IF_ERROR(Finish(r, label));
+    std::string e = CheckHierarchyNodes(h, bake->mesh);
+    if (!e.empty()) return Corrupt(label, e);
+
+    label = "section LINK";
+    uint32_t links = 0;
+    RELIGHT_RETURN_IF_ERROR(
+        LoadCounted(hierarchy_index_ + 1, label, LinkBytes, "links", &r, &links));
+    r.GetPlanar(&h.link_p, links, 1, "link p");
+    r.GetPlanar(&h.link_q, links, 1, "link q");
+    r.GetPlanar(&h.link_f_pq, links, 1, "link f_pq");
+    r.GetPlanar(&h.link_f_qp, links, 1, "link f_qp");
+    r.GetPlanar(&h.link_g_pq, 2 * size_t{links}, 2, "link g_pq");
+    r.GetPlanar(&h.link_g_qp, 2 * size_t{links}, 2, "link g_qp");
+    RELIGHT_RETURN_IF_ERROR(Finish(r, label));
+    e = CheckHierarchyLinks(h);
+    if (!e.empty()) return Corrupt(label, e);
+    bake->hierarchy = std::move(h);
+    return Status::Ok();
+  }
+
   const uint8_t* data_;
   size_t size_;
   std::string name_;  // "'path'" or "(in memory)", for messages
   size_t toc_end_ = 0;
   uint32_t version_ = kVersion;
   std::vector<TocEntry> toc_;
+  size_t hierarchy_index_ = 0;  // TOC index of HIER (LINK follows); 0: none
   Counts counts_;
   std::vector<uint8_t> scratch_;  // one decompressed section at a time
   std::unique_ptr<ZSTD_DCtx, DctxDeleter> dctx_;

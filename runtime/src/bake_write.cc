@@ -73,6 +73,12 @@ Status Validate(const Bake& bake) {
   }
   e = CheckUniqueNames(names, "luminaire");
   if (!e.empty()) return Invalid("luminaires", e);
+  if (bake.hierarchy) {
+    e = CheckHierarchyNodes(*bake.hierarchy, bake.mesh);
+    if (!e.empty()) return Invalid("hierarchy nodes", e);
+    e = CheckHierarchyLinks(*bake.hierarchy);
+    if (!e.empty()) return Invalid("hierarchy links", e);
+  }
   return Status::Ok();
 }
 
@@ -158,13 +164,37 @@ void EncodeBasis(const BakeLightReceivers& rec, std::vector<uint8_t>* out) {
   w.PutPlanar(rec.basis, 3);
 }
 
+void EncodeHierarchyNodes(const BakeHierarchy& h, std::vector<uint8_t>* out) {
+  ByteWriter w(out);
+  w.Put(h.node_count());
+  w.PutPlanar(h.node_surface, 1);
+  w.PutPlanar(h.node_parent, 1);
+  w.PutPlanar(h.node_first_child, 1);
+  w.PutPlanar(h.node_child_count, 1);
+  w.PutPlanar(h.node_corner_count, 1);
+  w.PutPlanar(h.node_corners, kBakeMaxNodeCorners);
+  w.PutPlanar(h.node_area, 1);
+  w.PutPlanar(h.node_leaf_triangle, 1);
+}
+
+void EncodeHierarchyLinks(const BakeHierarchy& h, std::vector<uint8_t>* out) {
+  ByteWriter w(out);
+  w.Put(h.link_count());
+  w.PutPlanar(h.link_p, 1);
+  w.PutPlanar(h.link_q, 1);
+  w.PutPlanar(h.link_f_pq, 1);
+  w.PutPlanar(h.link_f_qp, 1);
+  w.PutPlanar(h.link_g_pq, 2);
+  w.PutPlanar(h.link_g_qp, 2);
+}
+
 uint32_t SectionCount(const Bake& bake) {
   uint32_t n = 2 + static_cast<uint32_t>(bake.grids.size() + bake.luminaires.size());
   for (const BakeLuminaire& lum : bake.luminaires) {
     const uint32_t per_set = lum.direct_mode == DirectMode::kExactDirect ? 2 : 1;
     n += per_set * bake.receiver_set_count();
   }
-  return n;
+  return n + (bake.hierarchy ? 2 : 0);
 }
 
 Status IoError(const std::string& path, const char* what, int err) {
@@ -243,10 +273,11 @@ class SectionSink {
   std::vector<TocEntry> toc_;
 };
 
-std::vector<uint8_t> EncodeHeader(const std::vector<TocEntry>& toc, uint64_t file_size) {
+std::vector<uint8_t> EncodeHeader(uint32_t version, const std::vector<TocEntry>& toc,
+                                  uint64_t file_size) {
   std::vector<uint8_t> h(kHeaderBytes + kTocEntryBytes * toc.size(), 0);
   std::memcpy(h.data(), kMagic, sizeof(kMagic));
-  StoreLe(h.data() + kVersionOffset, kVersion);
+  StoreLe(h.data() + kVersionOffset, version);
   StoreLe(h.data() + kSectionCountOffset, static_cast<uint32_t>(toc.size()));
   StoreLe(h.data() + kFileSizeOffset, file_size);
   for (size_t i = 0; i < toc.size(); ++i) {
@@ -260,7 +291,7 @@ std::vector<uint8_t> EncodeHeader(const std::vector<TocEntry>& toc, uint64_t fil
 
 // Writes every section in TOC order behind the space for the header and TOC,
 // then them. Returns false with errno set on an I/O failure.
-bool WriteSections(const Bake& bake, int fd) {
+bool WriteSections(const Bake& bake, int fd, std::vector<BakeSectionSize>* sizes) {
   const uint32_t sections = SectionCount(bake);
   SectionSink sink(fd, kHeaderBytes + kTocEntryBytes * sections);
   std::vector<uint8_t> raw;
@@ -285,10 +316,27 @@ bool WriteSections(const Bake& bake, int fd) {
       ok = ok && add(kTagBasis, [&](std::vector<uint8_t>* o) { EncodeBasis(rec, o); });
     }
   }
+  if (bake.hierarchy) {
+    const BakeHierarchy& h = *bake.hierarchy;
+    ok = ok && add(kTagHierarchy, [&](std::vector<uint8_t>* o) { EncodeHierarchyNodes(h, o); }) &&
+         add(kTagLinks, [&](std::vector<uint8_t>* o) { EncodeHierarchyLinks(h, o); });
+  }
   if (!ok) return false;
   RELIGHT_CHECK(sink.toc().size() == sections);
-  const std::vector<uint8_t> header = EncodeHeader(sink.toc(), sink.end());
-  return WriteAt(fd, header.data(), header.size(), 0);
+  const uint32_t version = bake.hierarchy ? kFirstVersionWithHierarchy : kVersionWithoutHierarchy;
+  const std::vector<uint8_t> header = EncodeHeader(version, sink.toc(), sink.end());
+  if (!WriteAt(fd, header.data(), header.size(), 0)) return false;
+  if (sizes) {
+    sizes->clear();
+    for (const TocEntry& e : sink.toc()) {
+      BakeSectionSize size;
+      for (int i = 0; i < 4; ++i) size.tag[i] = static_cast<char>(e.tag >> (8 * i));
+      size.raw_bytes = e.raw;
+      size.stored_bytes = e.stored;
+      sizes->push_back(size);
+    }
+  }
+  return true;
 }
 
 // Makes the rename itself durable. Best effort: the new file is already in
@@ -306,7 +354,7 @@ void SyncDirectoryOf(const std::string& path) {
 
 }  // namespace
 
-Status WriteBake(const Bake& bake, const std::string& path) {
+Status WriteBake(const Bake& bake, const std::string& path, std::vector<BakeSectionSize>* sizes) {
   if (path.empty()) return Status(StatusCode::kInvalidArgument, "bake: empty path");
   RELIGHT_RETURN_IF_ERROR(Validate(bake));
 
@@ -315,7 +363,7 @@ Status WriteBake(const Bake& bake, const std::string& path) {
   if (fd < 0) return IoError(path, ("cannot create '" + tmp + "'").c_str(), errno);
 
   const char* failed = nullptr;
-  if (!WriteSections(bake, fd)) {
+  if (!WriteSections(bake, fd, sizes)) {
     failed = "write failed";
   } else if (::fsync(fd) != 0) {
     failed = "fsync failed";

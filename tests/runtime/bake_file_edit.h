@@ -5,14 +5,25 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <zlib.h>
 #include <zstd.h>
 
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
+#include <random>
+#include <string>
+#include <utility>
 #include <vector>
+
+#include "bake_test_bake.h"
+#include "relight/bake.h"
 
 namespace relight::bake_test {
 
@@ -159,5 +170,107 @@ inline Bytes EditPayload(const Bytes& file, size_t section, const std::function<
   Relayout(&c);
   return Join(c);
 }
+
+// Random bytes behind valid crcs, `iterations` times, in a section drawn from
+// `sections` (1 to 3 bytes; stored compressed and raw in turn). The reader
+// must reject the file as corrupt or accept it, and whatever it accepts the
+// writer must write (to `scratch_path`) and read back unchanged: both sides
+// share one set of rules. Returns {accepted, rejected}.
+inline std::pair<size_t, size_t> DamagePayloads(const Bytes& file,
+                                                const std::vector<size_t>& sections,
+                                                int iterations, uint32_t seed,
+                                                const std::string& scratch_path) {
+  std::mt19937 rng(seed);
+  size_t accepted = 0, rejected = 0;
+  for (int iter = 0; iter < iterations; ++iter) {
+    const size_t pick = std::uniform_int_distribution<size_t>(0, sections.size() - 1)(rng);
+    const int edits = std::uniform_int_distribution<int>(1, 3)(rng);
+    const Bytes bad = EditPayload(
+        file, sections[pick],
+        [&](Bytes* p) {
+          for (int e = 0; e < edits && !p->empty(); ++e) {
+            const size_t at = std::uniform_int_distribution<size_t>(0, p->size() - 1)(rng);
+            (*p)[at] = static_cast<uint8_t>(rng());
+          }
+        },
+        iter % 2 == 0);
+    Bake out;
+    const Status st = ParseBake(bad.data(), bad.size(), &out);
+    if (!st.ok()) {
+      ++rejected;
+      EXPECT_EQ(st.code(), StatusCode::kCorrupt) << st.ToString();
+      continue;
+    }
+    ++accepted;
+    const Status written = WriteBake(out, scratch_path);
+    EXPECT_TRUE(written.ok()) << "iteration " << iter << ": " << written.ToString();
+    Bake again;
+    EXPECT_TRUE(ReadBake(scratch_path, &again).ok());
+    ExpectBakesEqual(out, again);
+    if (::testing::Test::HasFailure()) break;
+  }
+  return {accepted, rejected};
+}
+
+inline Bytes ReadFileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return Bytes(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+inline bool Contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
+
+// A directory of its own, with MakeBake(7) (which has a hierarchy) written to
+// good.rlb: bake_ and its bytes file_.
+class BakeFileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char tmpl[] = "/tmp/bake_file_test.XXXXXX";
+    ASSERT_NE(::mkdtemp(tmpl), nullptr);
+    dir_ = tmpl;
+    bake_ = MakeBake(7);
+    ASSERT_TRUE(WriteBake(bake_, Path("good.rlb")).ok());
+    file_ = ReadFileBytes(Path("good.rlb"));
+    ASSERT_GT(file_.size(), kHeaderBytes);
+  }
+  void TearDown() override {
+    ::chmod(dir_.c_str(), 0755);
+    std::filesystem::remove_all(dir_);
+  }
+  std::string Path(const std::string& name) const { return dir_ + "/" + name; }
+  // Files in the test directory: a failed write must leave no temporary behind.
+  size_t FileCount() const {
+    size_t n = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir_)) n += entry.exists() ? 1 : 0;
+    return n;
+  }
+
+  // A copy of bake_ broken one way, and what WriteBake must say about it.
+  struct Spoiled {
+    const char* what;
+    std::function<void(Bake*)> spoil;
+  };
+  // WriteBake refuses each as kInvalidArgument ("bake: " ... `what` ...) and
+  // leaves good.rlb as it was, with nothing beside it.
+  void ExpectWriteRejects(const std::vector<Spoiled>& cases) {
+    const std::string path = Path("good.rlb");
+    for (const Spoiled& c : cases) {
+      SCOPED_TRACE(c.what);
+      Bake bad = bake_;
+      c.spoil(&bad);
+      const Status st = WriteBake(bad, path);
+      EXPECT_EQ(st.code(), StatusCode::kInvalidArgument) << st.ToString();
+      EXPECT_EQ(st.message().rfind("bake: ", 0), 0u) << st.message();
+      EXPECT_TRUE(Contains(st.message(), c.what)) << st.message();
+      EXPECT_EQ(ReadFileBytes(path), file_);
+      EXPECT_EQ(FileCount(), 1u);
+    }
+  }
+
+  std::string dir_;
+  Bake bake_;
+  Bytes file_;
+};
 
 }  // namespace relight::bake_test

@@ -54,43 +54,14 @@ namespace {
 
 using namespace bake_test;  // NOLINT: test helpers
 
-Bytes ReadFileBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return Bytes(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
 void WriteFileBytes(const std::string& path, const Bytes& bytes) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(reinterpret_cast<const char*>(bytes.data()),
             static_cast<std::streamsize>(bytes.size()));
 }
 
-bool Contains(const std::string& s, const std::string& part) {
-  return s.find(part) != std::string::npos;
-}
-
-class BakeIoTest : public ::testing::Test {
+class BakeIoTest : public BakeFileTest {
  protected:
-  void SetUp() override {
-    char tmpl[] = "/tmp/bake_io_test.XXXXXX";
-    ASSERT_NE(::mkdtemp(tmpl), nullptr);
-    dir_ = tmpl;
-    bake_ = MakeBake(7);
-    ASSERT_TRUE(WriteBake(bake_, Path("good.rlb")).ok());
-    file_ = ReadFileBytes(Path("good.rlb"));
-    ASSERT_GT(file_.size(), kHeaderBytes);
-  }
-  void TearDown() override {
-    ::chmod(dir_.c_str(), 0755);
-    std::filesystem::remove_all(dir_);
-  }
-  std::string Path(const std::string& name) const { return dir_ + "/" + name; }
-  // Files in the test directory: a failed write must leave no temporary behind.
-  size_t FileCount() const {
-    size_t n = 0;
-    for (const auto& entry : std::filesystem::directory_iterator(dir_)) n += entry.exists() ? 1 : 0;
-    return n;
-  }
-
   // Parses bytes that must be rejected as corrupt; `out` must stay untouched.
   std::string ExpectCorrupt(const Bytes& bytes, const std::string& part,
                             size_t max_allocation = 0) {
@@ -109,14 +80,11 @@ class BakeIoTest : public ::testing::Test {
     }
     return st.message();
   }
-
-  std::string dir_;
-  Bake bake_;
-  Bytes file_;
 };
 
 // Section order: META, MESH, GRID per grid, LUMI per luminaire, then per
-// luminaire per receiver set DIRT (exact direct only) and BASE.
+// luminaire per receiver set DIRT (exact direct only) and BASE, then HIER and
+// LINK (the test bake has a hierarchy).
 TEST_F(BakeIoTest, RoundTripEqualsFieldByFieldInDocumentedSectionOrder) {
   Bake read;
   const Status st = ReadBake(Path("good.rlb"), &read);
@@ -129,7 +97,8 @@ TEST_F(BakeIoTest, RoundTripEqualsFieldByFieldInDocumentedSectionOrder) {
 
   const std::vector<std::string> expected = {"META", "MESH", "GRID", "GRID", "LUMI",
                                              "LUMI", "DIRT", "BASE", "DIRT", "BASE",
-                                             "DIRT", "BASE", "BASE", "BASE", "BASE"};
+                                             "DIRT", "BASE", "BASE", "BASE", "BASE",
+                                             "HIER", "LINK"};
   const Container c = Split(file_);
   ASSERT_EQ(c.sections.size(), expected.size());
   for (size_t i = 0; i < expected.size(); ++i) {
@@ -206,13 +175,13 @@ TEST_F(BakeIoTest, SingleBitFlipsAreRejected) {
 
 TEST_F(BakeIoTest, NewerVersionIsUnsupportedAndVersionZeroCorrupt) {
   Container c = Split(file_);
-  EXPECT_EQ(c.version, 2u);
-  c.version = 3;
+  EXPECT_EQ(c.version, 3u);  // with a hierarchy
+  c.version = 4;
   Bake out;
   const Bytes newer = Join(c);
   Status st = ParseBake(newer.data(), newer.size(), &out);
   EXPECT_EQ(st.code(), StatusCode::kUnsupported) << st.ToString();
-  EXPECT_TRUE(Contains(st.message(), "version 3")) << st.message();
+  EXPECT_TRUE(Contains(st.message(), "version 4")) << st.message();
   c.version = 0;
   ExpectCorrupt(Join(c), "version 0");
 }
@@ -225,7 +194,8 @@ TEST_F(BakeIoTest, HostileHeaderFieldsAreRejectedWithoutBigAllocations) {
 
   bad = file_;
   PutLe<uint64_t>(&bad[16], 0xFFFFFFFFFFFFull);  // file size; crc fixed below
-  PutLe(&bad[24], Crc(&bad[kHeaderBytes], kTocEntryBytes * 15, Crc(bad.data(), 24)));
+  const size_t toc_bytes = kTocEntryBytes * Split(file_).sections.size();
+  PutLe(&bad[24], Crc(&bad[kHeaderBytes], toc_bytes, Crc(bad.data(), 24)));
   ExpectCorrupt(bad, "the header says", kSmall);
 
   Container c = Split(file_);
@@ -295,6 +265,17 @@ TEST_F(BakeIoTest, RawSizeLiesAreRejectedBeforeDecompressing) {
   c.sections[1].raw += 1;
   Relayout(&c);
   ExpectCorrupt(Join(c), "section MESH: zstd frame content size", kSmall);
+
+  // LINK claims the bytes of more than 2^28 links, backed by just enough
+  // stored bytes for zstd's expansion bound: the link limit refuses it.
+  c = Split(file_);
+  Section& link = c.sections.back();
+  ASSERT_EQ(link.tag, Tag("LINK"));
+  link.raw = 4 + 32 * (uint64_t{1} << 28) + 32;
+  link.flags = 1;
+  link.bytes.assign(static_cast<size_t>(link.raw / 65536 + 1), 0);
+  Relayout(&c);
+  ExpectCorrupt(Join(c), "section LINK: raw size 8589934628 is outside [4, 8589934596]", kSmall);
 
   // Uncompressed, the raw size must equal the stored size.
   c = Split(file_);
@@ -428,11 +409,13 @@ TEST_F(BakeIoTest, HostileLuminaireTailsAreRejected) {
   ExpectCorrupt(edit([&](Bytes* p) { p->resize(p->size() - 8); }), "LUMI[0]");
 }
 
-// Format version 1 (no LUMI tail) still reads, with the defaults of version 2.
+// Format version 1 (no LUMI tail, no hierarchy) still reads, with the defaults of version 2.
 TEST_F(BakeIoTest, Version1FilesStillRead) {
   Container c = Split(file_);
   c.version = 1;
+  c.sections.resize(c.sections.size() - 2);  // HIER, LINK
   Bake expected = bake_;
+  expected.hierarchy.reset();
   for (size_t l = 0; l < 2; ++l) {
     Section& lumi = c.sections[4 + l];
     Bytes raw = Payload(lumi);
@@ -463,36 +446,9 @@ TEST_F(BakeIoTest, Version1FilesStillRead) {
 // must reject or accept without crashing, and whatever it accepts the writer
 // must accept too (both sides share one set of rules).
 TEST_F(BakeIoTest, DamagedPayloadsWithValidCrcsAreRejectedOrRoundTrip) {
-  std::mt19937 rng(11);
-  const size_t sections = Split(file_).sections.size();
-  size_t accepted = 0, rejected = 0;
-  for (int iter = 0; iter < 1000; ++iter) {
-    const size_t section = std::uniform_int_distribution<size_t>(0, sections - 1)(rng);
-    const int edits = std::uniform_int_distribution<int>(1, 3)(rng);
-    const Bytes bad = EditPayload(
-        file_, section,
-        [&](Bytes* p) {
-          for (int e = 0; e < edits && !p->empty(); ++e) {
-            const size_t at = std::uniform_int_distribution<size_t>(0, p->size() - 1)(rng);
-            (*p)[at] = static_cast<uint8_t>(rng());
-          }
-        },
-        iter % 2 == 0);
-    Bake out;
-    const Status st = ParseBake(bad.data(), bad.size(), &out);
-    if (!st.ok()) {
-      ++rejected;
-      EXPECT_EQ(st.code(), StatusCode::kCorrupt) << st.ToString();
-      continue;
-    }
-    ++accepted;
-    const Status written = WriteBake(out, Path("again.rlb"));
-    EXPECT_TRUE(written.ok()) << "iteration " << iter << ": " << written.ToString();
-    Bake again;
-    EXPECT_TRUE(ReadBake(Path("again.rlb"), &again).ok());
-    ExpectBakesEqual(out, again);
-    if (HasFailure()) break;
-  }
+  std::vector<size_t> sections(Split(file_).sections.size());
+  for (size_t i = 0; i < sections.size(); ++i) sections[i] = i;
+  const auto [accepted, rejected] = DamagePayloads(file_, sections, 1000, 11, Path("again.rlb"));
   std::printf("damaged payloads: %zu accepted (random values still in range), %zu rejected\n",
               accepted, rejected);
   EXPECT_GT(rejected, 0u);
@@ -507,11 +463,7 @@ TEST_F(BakeIoTest, SectionCrcMismatchNamesTheSection) {
 }
 
 TEST_F(BakeIoTest, WriteRejectsInconsistentBakesAndKeepsTheOldFile) {
-  struct Case {
-    const char* what;
-    std::function<void(Bake*)> spoil;
-  };
-  const std::vector<Case> cases = {
+  ExpectWriteRejects({
       {"mesh: normals has 30 values", [](Bake* b) { b->mesh.normals.resize(30); }},
       {"mesh: albedo has 34 values", [](Bake* b) { b->mesh.albedo.push_back(1); }},
       {"mesh: triangle 0: vertex index 11", [](Bake* b) { b->mesh.triangles[0] = 11; }},
@@ -569,19 +521,7 @@ TEST_F(BakeIoTest, WriteRejectsInconsistentBakesAndKeepsTheOldFile) {
            b->grids.push_back(grid);
          }
        }},
-  };
-  const std::string path = Path("good.rlb");
-  for (const Case& c : cases) {
-    SCOPED_TRACE(c.what);
-    Bake bad = bake_;
-    c.spoil(&bad);
-    const Status st = WriteBake(bad, path);
-    EXPECT_EQ(st.code(), StatusCode::kInvalidArgument) << st.ToString();
-    EXPECT_EQ(st.message().rfind("bake: ", 0), 0u) << st.message();
-    EXPECT_TRUE(Contains(st.message(), c.what)) << st.message();
-    EXPECT_EQ(ReadFileBytes(path), file_);
-    EXPECT_EQ(FileCount(), 1u);
-  }
+  });
 }
 
 TEST_F(BakeIoTest, FailedWritesLeaveTheExistingFileUntouched) {

@@ -1,11 +1,14 @@
 // A small but complete Bake from a fixed seed (every kind of section, both
 // direct modes, a rectangle and a list grid, a zero-scale block, an
-// unreachable receiver), and a field-by-field comparison of two bakes.
+// unreachable receiver, a radiosity hierarchy), and a field-by-field
+// comparison of two bakes.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -102,6 +105,68 @@ inline void MakeLidTable(std::mt19937* rng, BakeLuminaire* lum) {
   lum->tilt_range = 265 << 16;
 }
 
+// A hierarchy over the test bake's 11 vertices and 8 triangles (format
+// version 3), replacing its random triangles with the leaves' fans:
+//   surface 0: node 0 (root, 4 corners) -> 1 (quad leaf: triangles 0, 1) and
+//              2 (5 corners) -> 3, 4, 5 (triangle leaves: 2, 3, 4)
+//   surface 1: node 6, a quad root that is a leaf (triangles 5, 6)
+//   surface 2: node 7, a triangle root that is a leaf (triangle 7)
+// and links between them: inner receivers with gradients, a zero factor.
+inline void AddHierarchy(uint32_t seed, Bake* b) {
+  std::mt19937 rng(seed + 1000);
+  constexpr uint32_t kNo = kBakeNoIndex;
+  struct Node {
+    uint16_t surface;
+    uint32_t parent, first_child;
+    uint8_t child_count;
+    std::vector<uint32_t> corners;
+    uint32_t leaf_triangle;
+  };
+  const Node nodes[] = {{0, kNo, 1, 2, {0, 4, 5, 3}, kNo},       {0, 0, kNo, 0, {0, 1, 2, 3}, 0},
+                        {0, 0, 3, 3, {1, 4, 5, 3, 2}, kNo},      {0, 2, kNo, 0, {1, 4, 2}, 2},
+                        {0, 2, kNo, 0, {4, 5, 2}, 3},            {0, 2, kNo, 0, {2, 5, 3}, 4},
+                        {1, kNo, kNo, 0, {6, 7, 8, 9}, 5},       {2, kNo, kNo, 0, {7, 10, 8}, 7}};
+  BakeHierarchy h;
+  b->mesh.triangles.clear();
+  b->mesh.triangle_surface.clear();
+  for (const Node& n : nodes) {
+    h.node_surface.push_back(n.surface);
+    h.node_parent.push_back(n.parent);
+    h.node_first_child.push_back(n.first_child);
+    h.node_child_count.push_back(n.child_count);
+    h.node_corner_count.push_back(static_cast<uint8_t>(n.corners.size()));
+    for (int k = 0; k < kBakeMaxNodeCorners; ++k) {
+      h.node_corners.push_back(k < static_cast<int>(n.corners.size()) ? n.corners[k] : kNo);
+    }
+    h.node_leaf_triangle.push_back(n.leaf_triangle);
+    h.node_area.push_back(n.child_count == 0 ? RandomInt<uint64_t>(&rng, 1, uint64_t{1} << 36) : 0);
+    if (n.child_count != 0) continue;
+    for (size_t k = 1; k + 1 < n.corners.size(); ++k) {  // the leaf's fan
+      b->mesh.triangles.insert(b->mesh.triangles.end(),
+                               {n.corners[0], n.corners[k], n.corners[k + 1]});
+      b->mesh.triangle_surface.push_back(n.surface);
+    }
+  }
+  h.node_area[2] = h.node_area[3] + h.node_area[4] + h.node_area[5];
+  h.node_area[0] = h.node_area[1] + h.node_area[2];
+  // (p, q, f_pq zero?): nodes 0 and 2 are inner, so they receive gradients.
+  const std::pair<uint32_t, uint32_t> pairs[] = {{0, 6}, {0, 7}, {1, 6}, {2, 6},
+                                                 {2, 7}, {3, 7}, {5, 6}};
+  for (const auto& [p, q] : pairs) {
+    h.link_p.push_back(p);
+    h.link_q.push_back(q);
+    const bool zero_pq = p == 2 && q == 7;
+    h.link_f_pq.push_back(zero_pq ? 0 : RandomInt<uint32_t>(&rng, 1, UINT32_MAX));
+    h.link_f_qp.push_back(RandomInt<uint32_t>(&rng, 1, UINT32_MAX));
+    for (int a = 0; a < 2; ++a) {
+      const bool inner_p = h.node_child_count[p] != 0 && !zero_pq;
+      h.link_g_pq.push_back(inner_p ? RandomInt<int32_t>(&rng, INT32_MIN, INT32_MAX) : 0);
+      h.link_g_qp.push_back(0);  // nodes 6 and 7 are leaves
+    }
+  }
+  b->hierarchy = std::move(h);
+}
+
 inline Bake MakeBake(uint32_t seed) {
   std::mt19937 rng(seed);
   Bake b;
@@ -151,6 +216,7 @@ inline Bake MakeBake(uint32_t seed) {
       lum.receivers.push_back(MakeReceivers(&rng, lum, b.receiver_count(s)));
     }
   }
+  AddHierarchy(seed, &b);
   return b;
 }
 
@@ -160,6 +226,26 @@ inline bool ScalesEqual(const std::vector<QuantScale>& a, const std::vector<Quan
     if (a[i].mantissa != b[i].mantissa || a[i].exponent != b[i].exponent) return false;
   }
   return true;
+}
+
+inline void ExpectHierarchiesEqual(const std::optional<BakeHierarchy>& a,
+                                   const std::optional<BakeHierarchy>& b) {
+  ASSERT_EQ(a.has_value(), b.has_value());
+  if (!a) return;
+  EXPECT_EQ(a->node_surface, b->node_surface);
+  EXPECT_EQ(a->node_parent, b->node_parent);
+  EXPECT_EQ(a->node_first_child, b->node_first_child);
+  EXPECT_EQ(a->node_child_count, b->node_child_count);
+  EXPECT_EQ(a->node_corner_count, b->node_corner_count);
+  EXPECT_EQ(a->node_corners, b->node_corners);
+  EXPECT_EQ(a->node_area, b->node_area);
+  EXPECT_EQ(a->node_leaf_triangle, b->node_leaf_triangle);
+  EXPECT_EQ(a->link_p, b->link_p);
+  EXPECT_EQ(a->link_q, b->link_q);
+  EXPECT_EQ(a->link_f_pq, b->link_f_pq);
+  EXPECT_EQ(a->link_f_qp, b->link_f_qp);
+  EXPECT_EQ(a->link_g_pq, b->link_g_pq);
+  EXPECT_EQ(a->link_g_qp, b->link_g_qp);
 }
 
 inline void ExpectBakesEqual(const Bake& a, const Bake& b) {
@@ -223,6 +309,7 @@ inline void ExpectBakesEqual(const Bake& a, const Bake& b) {
       EXPECT_TRUE(ScalesEqual(p.basis_scale, q.basis_scale));
     }
   }
+  ExpectHierarchiesEqual(a.hierarchy, b.hierarchy);
 }
 
 }  // namespace relight::bake_test

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -131,6 +132,50 @@ struct BakeCamera {
   int32_t fov_y = 50 << 16;         // Q16.16 degrees, vertical
 };
 
+// Hierarchical radiosity's quadtrees and links (docs/hierarchy.md), kept so
+// that light sources placed on surfaces at run time (Chandran & Srivastava's
+// fractional emissivity) can re-solve radiosity from the bake alone. Plain
+// integer arrays, one entry per node (node_*) or per link (link_*).
+inline constexpr uint32_t kBakeNoIndex = 0xFFFFFFFFu;
+inline constexpr int kBakeMaxNodeCorners = 6;
+// Link gradients: int32 with this many fraction bits, per metre (Q8.23).
+inline constexpr int kBakeGradientFracBits = 23;
+
+struct BakeHierarchy {
+  // Nodes, surface by surface in surface order; within a surface breadth
+  // first from its root (parents before children, each node's children
+  // contiguous). Every surface with triangles has one tree; its leaves cover
+  // each of its triangles exactly once.
+  std::vector<uint16_t> node_surface;
+  std::vector<uint32_t> node_parent;       // kBakeNoIndex for a root
+  std::vector<uint32_t> node_first_child;  // kBakeNoIndex for a leaf
+  std::vector<uint8_t> node_child_count;   // 0 for a leaf, else >= 2
+  std::vector<uint8_t> node_corner_count;  // 3 .. kBakeMaxNodeCorners
+  // kBakeMaxNodeCorners per node: mesh vertex indices of the convex polygon,
+  // CCW from the lit side; unused slots kBakeNoIndex.
+  std::vector<uint32_t> node_corners;
+  // Q32.32 m^2: a leaf's patch area (> 0), an inner node's exactly the sum of its children's.
+  std::vector<uint64_t> node_area;
+  // Leaves: the first of their corner_count - 2 render triangles, a fan from
+  // corner 0 (corners 0, k+1, k+2). kBakeNoIndex for an inner node.
+  std::vector<uint32_t> node_leaf_triangle;
+
+  // Links, sorted by (p, q) with p < q, between nodes on different surfaces.
+  // f_pq: mean irradiance on p (lux) per unit exitance of q (lm/m^2), i.e. the
+  // form factor with visibility, UQ0.32; f_qp the reverse. g_pq: how that
+  // irradiance varies over p, (d/du, d/dv) per metre in p's surface frame
+  // about p's area centroid, kBakeGradientFracBits fraction bits; 0 for a leaf
+  // p and wherever f_pq is 0. The frame: u = unit(root corner 1 - root corner
+  // 0), v = n x u, n the surface's normal.
+  std::vector<uint32_t> link_p, link_q;
+  std::vector<uint32_t> link_f_pq, link_f_qp;
+  std::vector<int32_t> link_g_pq, link_g_qp;  // 2 per link: u, v
+
+  uint32_t node_count() const { return static_cast<uint32_t>(node_surface.size()); }
+  uint32_t link_count() const { return static_cast<uint32_t>(link_p.size()); }
+  bool leaf(uint32_t node) const { return node_child_count[node] == 0; }
+};
+
 struct Bake {
   std::string scene_name;
   BakeMesh mesh;
@@ -140,6 +185,8 @@ struct Bake {
   // LightQ12 cd/m^2 shown as diffuse white (sRGB 193, about 53% linear); the
   // tone map rolls highlights off up to 4x this, where it reaches 255.
   int32_t white_luminance = 100 << kLightFracBits;
+  // Only bakes of the hierarchical solver have one (sections HIER and LINK).
+  std::optional<BakeHierarchy> hierarchy;
 
   uint32_t receiver_set_count() const { return 1 + static_cast<uint32_t>(grids.size()); }
   uint32_t receiver_count(uint32_t set) const {
@@ -147,10 +194,19 @@ struct Bake {
   }
 };
 
+// One section of a written file, for size reports.
+struct BakeSectionSize {
+  char tag[5] = {};  // "META", "MESH", ..., "HIER", "LINK"
+  uint64_t raw_bytes = 0, stored_bytes = 0;
+};
+
 // Writes atomically: a temporary file beside `path`, fsync, rename. On any
-// error the previous file at `path` (if any) is untouched.
+// error the previous file at `path` (if any) is untouched. The file has
+// format version 3 when it holds a hierarchy, else 2 (older readers read it).
+// `sizes`, if given, receives every section's raw and stored size, in file order.
 // Returns kOk, kInvalidArgument (inconsistent sizes, named), kIoError.
-Status WriteBake(const Bake& bake, const std::string& path);
+Status WriteBake(const Bake& bake, const std::string& path,
+                 std::vector<BakeSectionSize>* sizes = nullptr);
 
 // Reads and fully validates a bake: sizes, checksums, counts, index ranges,
 // degrees, scales. Returns kOk, kNotFound, kIoError, kCorrupt (what and

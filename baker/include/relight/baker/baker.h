@@ -41,6 +41,9 @@ struct BakeOptions {
   // Hierarchical: sweeps stop when the estimated remaining change of the
   // exitance is below this fraction of each right-hand side's peak.
   double solve_tolerance = 1e-4;
+  // Hierarchical: store the quadtrees and links in the bake (sections HIER
+  // and LINK) for light sources placed on surfaces at run time.
+  bool store_hierarchy = true;
 };
 
 struct BakeReport {
