@@ -32,6 +32,7 @@
 #include "relight/sh_index.h"
 #include "relight/sh_rotation.h"
 #include "round_shift.h"
+#include "surface_emitters.h"
 #include "weights.h"
 
 namespace relight {
@@ -172,9 +173,11 @@ struct Engine::Impl {
   std::vector<MixSource> mix;                     // per luminaire
   std::vector<int32_t> vertex_out;
   std::vector<std::vector<int32_t>> grid_total, grid_direct;
+  SurfaceEmitters emitters;  // run-time light sources on surfaces
   bool remix = true;
   int last_luminaires = 0;
   int last_terms = 0;
+  int last_emitters = 0;
 
   Status Allocate();
   Status EditLidSample(int index, int sample, int64_t candela_q16);
@@ -254,7 +257,7 @@ Status Engine::Impl::Allocate() {
     grid_total[g].assign(static_cast<size_t>(bake.grids[g].point_count()) * 3, 0);
     grid_direct[g].assign(static_cast<size_t>(bake.grids[g].point_count()) * 3, 0);
   }
-  return Status::Ok();
+  return emitters.Open(bake);
 }
 
 // Dobashi 4.1: one control point (= LID sample, the paper's simplification)
@@ -357,6 +360,7 @@ void Engine::Impl::Remix() {
   }
   MixLuminairesQ12(mix.data(), n, bake.mesh.vertex_count(), scratch.data(), scratch_len,
                    vertex_out.data());
+  emitters.AddTo(vertex_out.data());
   for (uint32_t g = 0; g < grid_total.size(); ++g) {
     const uint32_t count = bake.grids[g].point_count();
     for (uint32_t i = 0; i < n; ++i) {
@@ -392,6 +396,8 @@ void Engine::Impl::Update() {
     ++last_luminaires;
     remix = true;
   }
+  last_emitters = emitters.SolvePending();
+  if (last_emitters > 0) remix = true;
   if (remix) Remix();
   remix = false;
 }
@@ -587,5 +593,44 @@ int Engine::last_update_luminaires_recombined() const {
 }
 
 int Engine::last_update_terms_recombined() const { return impl_ ? impl_->last_terms : 0; }
+
+int Engine::last_update_emitters_solved() const { return impl_ ? impl_->last_emitters : 0; }
+
+int Engine::last_update_emitter_sweeps() const {
+  return impl_ ? impl_->emitters.last_sweeps() : 0;
+}
+
+namespace {
+
+Status NotOpen() { return Status(StatusCode::kInvalidArgument, "engine not open"); }
+
+}  // namespace
+
+Status Engine::SetSurfaceEmitter(int slot, const SurfaceEmitterShape& shape,
+                                 const LightQ12 luminance[3]) {
+  if (!impl_) return NotOpen();
+  for (int c = 0; c < 3; ++c) {  // checked before the shape, so an error changes nothing
+    if (luminance[c].raw() < 0) {
+      return Status(StatusCode::kInvalidArgument, "surface emitter: luminance < 0");
+    }
+  }
+  RELIGHT_RETURN_IF_ERROR(impl_->emitters.Place(slot, shape));
+  impl_->remix = true;
+  return impl_->emitters.SetLuminance(slot, luminance);
+}
+
+Status Engine::SetSurfaceEmitterLuminance(int slot, const LightQ12 luminance[3]) {
+  if (!impl_) return NotOpen();
+  RELIGHT_RETURN_IF_ERROR(impl_->emitters.SetLuminance(slot, luminance));
+  impl_->remix = true;
+  return Status::Ok();
+}
+
+Status Engine::RemoveSurfaceEmitter(int slot) {
+  if (!impl_) return NotOpen();
+  RELIGHT_RETURN_IF_ERROR(impl_->emitters.Remove(slot));
+  impl_->remix = true;
+  return Status::Ok();
+}
 
 }  // namespace relight

@@ -23,6 +23,7 @@
 #include "relight/bake.h"
 #include "relight/fixed.h"
 #include "relight/status.h"
+#include "relight/surface_emitter.h"
 
 namespace relight {
 
@@ -88,6 +89,21 @@ class Engine {
   const int64_t* lid_samples(int luminaire, int* count) const;
   FixtureState state(int luminaire) const;
 
+  // Run-time light sources on surfaces (relight/surface_emitter.h; Chandran &
+  // Srivastava's fractional emissivity), in slots 0 .. kMaxSurfaceEmitters-1.
+  // SetSurfaceEmitter places or moves one and sets its luminance (LightQ12
+  // cd/m^2 per channel): it clips the polygon against its surface's quadtree
+  // now and re-solves radiosity over the bake's links at the next Update()
+  // (the only costly step). Its light is added to vertex_luminance(), not to
+  // the grids (the bake has no links to grid points). Returns kUnsupported
+  // (bake without a hierarchy), kNotFound (no such surface), kInvalidArgument
+  // (slot, negative luminance, a corner off the surface's plane, a polygon
+  // not convex or not on the surface); on error nothing changes.
+  Status SetSurfaceEmitter(int slot, const SurfaceEmitterShape& shape, const LightQ12 luminance[3]);
+  // A dimmer or colour change: rescales the solved light, no clip or solve.
+  Status SetSurfaceEmitterLuminance(int slot, const LightQ12 luminance[3]);
+  Status RemoveSurfaceEmitter(int slot);
+
   // Brings the outputs up to date with the state. Integer-only, no allocation.
   void Update();
 
@@ -103,6 +119,9 @@ class Engine {
   // by the last Update(), and how many SH term passes that took.
   int last_update_luminaires_recombined() const;
   int last_update_terms_recombined() const;
+  // Emitters solved by the last Update() and the sweeps they took (all channels).
+  int last_update_emitters_solved() const;
+  int last_update_emitter_sweeps() const;
 
  private:
   struct Impl;
