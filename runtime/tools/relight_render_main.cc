@@ -2,6 +2,7 @@
 //
 //   relight-render room.rlb --set spot1.pan=30 --set spot1.dimmer=0.8 -o frame.png
 //   relight-render room.rlb --replay show.replay --fps 5 -o frames/frame_%04d.png
+//   relight-render room.rlb --emitter "ceiling:2000:2.5,1.5,2.7;3.5,1.5,2.7;3.5,2.5,2.7" -o lit.png
 //
 // Reads top to bottom: open the bake, apply settings, update the engine, tone
 // map, draw, write.
@@ -16,6 +17,7 @@
 #include "relight/osmesa_frame.h"
 #include "relight/pick.h"
 #include "frame_pipeline.h"
+#include "emitter_args.h"
 #include "replay_frames.h"
 #include "set_args.h"
 
@@ -82,15 +84,21 @@ int main(int argc, char** argv) {
       "Settings: --set FIXTURE.PARAM=VALUE with PARAM one of pan, tilt, roll (degrees, -720..720;\n"
       "roll turns the fixture about its beam axis), dimmer (0..1 or 0..100%), r, g, b (0..1) or\n"
       "colour=R,G,B. Unset parameters keep the scene's defaults.\n"
+      "Emitters: --emitter SURFACE:L:x,y,z;x,y,z;x,y,z[;...] puts a light source on a surface of a\n"
+      "bake with a radiosity hierarchy (relight-bake --solver hierarchical): L its luminance in cd/m^2\n"
+      "(or R,G,B), corners in metres around a convex polygon (3 to 8) on the surface's plane.\n"
       "Luminance (cd/m^2) is tone-mapped to sRGB with the bake's display white unless --white is given."};
   std::string bake_path, out_path = "frame.png", replay_path, camera_pos, camera_target, sheet_path;
   std::string aim_pixel, aim_luminaire;
-  std::vector<std::string> sets;
+  std::vector<std::string> sets, emitters;
   int width = 1280, height = 720;
   double fps = 5, white_cd_m2 = 0, fov = 0;
   bool list = false;
   app.add_option("bake", bake_path, "bake file written by relight-bake (.rlb)")->required();
   app.add_option("--set", sets, "fixture setting FIXTURE.PARAM=VALUE (repeatable)");
+  app.add_option("--emitter", emitters,
+                 "light source on a surface, SURFACE:L:x,y,z;x,y,z;x,y,z[;...] (L or R,G,B in cd/m^2, "
+                 "corners in metres; repeatable, at most 8)");
   app.add_option("-o,--output", out_path,
                  "output PNG; with --replay a pattern with %d, e.g. frames/frame_%04d.png")
       ->capture_default_str();
@@ -120,6 +128,13 @@ int main(int argc, char** argv) {
   for (const std::string& text : sets) {
     std::string error;
     if (!relight::cli::ApplySetText(engine, text, &error)) {
+      return Fail(error, 2);
+    }
+  }
+
+  for (size_t i = 0; i < emitters.size(); ++i) {
+    std::string error;
+    if (!relight::cli::ApplyEmitterText(engine, static_cast<int>(i), emitters[i], &error)) {
       return Fail(error, 2);
     }
   }

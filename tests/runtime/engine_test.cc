@@ -20,24 +20,7 @@
 #include "relight/engine.h"
 #include "relight/sh_index.h"
 
-// Counts heap allocations while armed: the engine must not allocate after Open.
-namespace {
-std::atomic<bool> g_count_allocations{false};
-std::atomic<int> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  if (g_count_allocations.load()) ++g_allocations;
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-// GCC 12 flags free() in a replaced operator delete as mismatched once
-// inlined (a false positive: this operator new is malloc).
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#pragma GCC diagnostic pop
+#include "count_allocations.h"
 
 namespace relight {
 namespace {

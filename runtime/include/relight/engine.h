@@ -119,7 +119,7 @@ class Engine {
   // by the last Update(), and how many SH term passes that took.
   int last_update_luminaires_recombined() const;
   int last_update_terms_recombined() const;
-  // Emitters solved by the last Update() and the sweeps they took (all channels).
+  // Emitters solved by the last Update() and the sweeps they took (3 channels a sweep).
   int last_update_emitters_solved() const;
   int last_update_emitter_sweeps() const;
 
