@@ -101,6 +101,8 @@ class Engine {
   // not convex or not on the surface); on error nothing changes.
   Status SetSurfaceEmitter(int slot, const SurfaceEmitterShape& shape, const LightQ12 luminance[3]);
   // A dimmer or colour change: rescales the solved light, no clip or solve.
+  // Both return kUnsupported (no hierarchy) or kInvalidArgument (slot; negative
+  // luminance). Removing an empty slot is not an error.
   Status SetSurfaceEmitterLuminance(int slot, const LightQ12 luminance[3]);
   Status RemoveSurfaceEmitter(int slot);
 

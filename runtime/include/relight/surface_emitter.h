@@ -1,0 +1,32 @@
+// Run-time light sources on surfaces: Chandran & Srivastava's fractional
+// emissivity (FE). An emitter is a convex polygon lying on one surface of the
+// bake; it covers parts of that surface's quadtree (clipping, their Fig. 5
+// Intersection()), the covered leaves emit, and radiosity is re-solved over
+// the links the bake stores (docs/hierarchy.md). Only bakes with a hierarchy
+// (sections HIER, LINK) support them.
+//
+// The engine drives them (Engine::SetSurfaceEmitter and friends); this header
+// holds the shape they take and the fixed limits the engine sizes for.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace relight {
+
+// Slots the engine reserves at Open(); corners of one emitter polygon.
+inline constexpr int kMaxSurfaceEmitters = 8;
+inline constexpr int kMinSurfaceEmitterCorners = 3;
+inline constexpr int kMaxSurfaceEmitterCorners = 8;
+// How far a corner may lie off the surface's plane: 2 mm (Q16.16 metres).
+inline constexpr int32_t kSurfaceEmitterPlaneToleranceQ16 = 131;
+
+struct SurfaceEmitterShape {
+  std::string surface;  // the bake's surface name (BakeMesh::surface_names)
+  int corner_count = 0;  // kMinSurfaceEmitterCorners .. kMaxSurfaceEmitterCorners
+  // Q16.16 metres, xyz per corner, in order around a convex polygon (either
+  // way round: it emits from the surface's lit side).
+  int32_t corners_q16[kMaxSurfaceEmitterCorners][3] = {};
+};
+
+}  // namespace relight
