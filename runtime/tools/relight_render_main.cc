@@ -6,6 +6,7 @@
 //
 // Reads top to bottom: open the bake, apply settings, update the engine, tone
 // map, draw, write.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -43,6 +44,39 @@ void PrintLuminaires(const relight::Engine& engine) {
                 s.rgb[2].raw() / 32767.0, lum.sh_degree,
                 lum.direct_mode == relight::DirectMode::kExactDirect ? "exact direct + SH indirect"
                                                                      : "all in SH");
+  }
+}
+
+// Where --emitter can go: each surface's name, extent (metres) and facing,
+// and whether the bake carries the hierarchy run-time emitters need.
+void PrintSurfaces(const relight::Engine& engine) {
+  const relight::BakeMesh& mesh = engine.bake().mesh;
+  const size_t n = mesh.surface_names.size();
+  std::vector<double> lo(3 * n, 1e300), hi(3 * n, -1e300), normal(3 * n, 0.0);
+  for (uint32_t t = 0; t < mesh.triangle_count(); ++t) {
+    const size_t s = mesh.triangle_surface[t];
+    if (s >= n) continue;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = mesh.triangles[3 * size_t{t} + static_cast<size_t>(k)];
+      for (int c = 0; c < 3; ++c) {
+        const double x = mesh.positions[3 * size_t{v} + static_cast<size_t>(c)] / 65536.0;
+        lo[3 * s + static_cast<size_t>(c)] = std::min(lo[3 * s + static_cast<size_t>(c)], x);
+        hi[3 * s + static_cast<size_t>(c)] = std::max(hi[3 * s + static_cast<size_t>(c)], x);
+        normal[3 * s + static_cast<size_t>(c)] += mesh.normals[3 * size_t{v} + static_cast<size_t>(c)];
+      }
+    }
+  }
+  std::printf("surfaces (extent x, y, z in metres; mean normal); --emitter %s:\n",
+              engine.bake().hierarchy ? "places light sources on them"
+                                      : "needs a bake of `relight-bake --solver hierarchical`");
+  for (size_t s = 0; s < n; ++s) {
+    if (lo[3 * s] > hi[3 * s]) continue;  // no triangles
+    const double len = std::sqrt(normal[3 * s] * normal[3 * s] + normal[3 * s + 1] * normal[3 * s + 1] +
+                                 normal[3 * s + 2] * normal[3 * s + 2]);
+    std::printf("  %-20s x %6.2f..%-6.2f y %6.2f..%-6.2f z %6.2f..%-6.2f normal %5.2f,%5.2f,%5.2f\n",
+                mesh.surface_names[s].c_str(), lo[3 * s], hi[3 * s], lo[3 * s + 1], hi[3 * s + 1], lo[3 * s + 2],
+                hi[3 * s + 2], len > 0 ? normal[3 * s] / len : 0.0, len > 0 ? normal[3 * s + 1] / len : 0.0,
+                len > 0 ? normal[3 * s + 2] / len : 0.0);
   }
 }
 
@@ -113,7 +147,7 @@ int main(int argc, char** argv) {
                  "replay script of timed settings ('TIME_S FIXTURE.PARAM=VALUE ...' per line): one frame per 1/fps seconds");
   app.add_option("--fps", fps, "frames per second of script time for --replay")->capture_default_str()->check(CLI::Range(0.1, 240.0));
   app.add_option("--sheet", sheet_path, "with --replay: also write all frames, half size, tiled 4 per row into this PNG");
-  app.add_flag("--list", list, "print the bake's luminaires and their default settings, then exit");
+  app.add_flag("--list", list, "print the bake's luminaires and their default settings, and its surfaces (for --emitter), then exit");
   app.add_option("--aim-at-pixel", aim_pixel,
                  "aim a luminaire at the surface point under pixel X,Y of the view (x right, y down)");
   app.add_option("--aim-luminaire", aim_luminaire, "the luminaire --aim-at-pixel moves (default: the first)");
@@ -123,6 +157,7 @@ int main(int argc, char** argv) {
   if (relight::Status st = engine.Open(bake_path); !st.ok()) return Fail(st.ToString(), 2);
   if (list) {
     PrintLuminaires(engine);
+    PrintSurfaces(engine);
     return 0;
   }
   for (const std::string& text : sets) {
