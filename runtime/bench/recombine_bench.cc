@@ -48,6 +48,13 @@ uint64_t SumWords(const std::vector<int16_t>& basis) {
   return sum;
 }
 
+// Per-term, per-channel multipliers spread over +-10^6 (|k| < 2^24: the vector path).
+std::vector<int32_t> MakeMultipliers(uint32_t terms) {
+  std::vector<int32_t> k(static_cast<size_t>(terms) * 3);
+  for (size_t i = 0; i < k.size(); ++i) k[i] = static_cast<int32_t>(1000003 * (i + 1) % 2000000) - 1000000;
+  return k;
+}
+
 // The baseline: sum every 64-bit word of the buffer (the compiler vectorises
 // this freely; it is bound by memory bandwidth, like the kernel should be).
 void BM_StreamRead(benchmark::State& state) {
@@ -94,8 +101,7 @@ void BM_RecombineOverStream(benchmark::State& state) {
   const uint32_t receivers = static_cast<uint32_t>(state.range(0));
   const uint32_t terms = static_cast<uint32_t>(state.range(1));
   const std::vector<int16_t> basis = MakeBasis(terms, receivers);
-  std::vector<int32_t> k(static_cast<size_t>(terms) * 3);
-  for (size_t i = 0; i < k.size(); ++i) k[i] = static_cast<int32_t>(1000003 * (i + 1) % 2000000) - 1000000;
+  const std::vector<int32_t> k = MakeMultipliers(terms);
   std::vector<int64_t> scratch(3 * 2048);  // what the engine passes
   std::vector<int32_t> out(static_cast<size_t>(receivers) * 3);
   std::vector<double> read_s, simd_s, recombine_s;
@@ -124,8 +130,7 @@ void BM_Recombine(benchmark::State& state) {
   const uint32_t receivers = static_cast<uint32_t>(state.range(0));
   const uint32_t terms = static_cast<uint32_t>(state.range(1));
   const std::vector<int16_t> basis = MakeBasis(terms, receivers);
-  std::vector<int32_t> k(static_cast<size_t>(terms) * 3);
-  for (size_t i = 0; i < k.size(); ++i) k[i] = static_cast<int32_t>(1000003 * (i + 1) % 2000000) - 1000000;
+  const std::vector<int32_t> k = MakeMultipliers(terms);
   std::vector<int64_t> scratch(static_cast<size_t>(state.range(2)));
   std::vector<int32_t> out(static_cast<size_t>(receivers) * 3);
   for (auto _ : state) {

@@ -18,9 +18,11 @@
 #include "relight/engine.h"
 
 #include <cstddef>
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "bake_check.h"
 #include "console_aim.h"
 #include "direct.h"
 #include "fixture_frame.h"
@@ -154,6 +156,11 @@ Status ValidateBake(const Bake& bake) {
         return Invalid(lum, "direct term size mismatch");
       }
     }
+  }
+  if (bake.hierarchy) {  // the surface emitters index mesh and nodes by it
+    std::string error = bake_format::CheckHierarchyNodes(*bake.hierarchy, bake.mesh);
+    if (error.empty()) error = bake_format::CheckHierarchyLinks(*bake.hierarchy);
+    if (!error.empty()) return Status(StatusCode::kInvalidArgument, "engine: hierarchy: " + error);
   }
   return Status::Ok();
 }

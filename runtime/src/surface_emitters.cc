@@ -7,7 +7,6 @@
 
 #include <utility>
 
-#include "bake_check.h"
 #include "round_shift.h"
 #include "surface_emitter_coverage.h"
 #include "surface_emitter_vertices.h"
@@ -28,10 +27,7 @@ Status SurfaceEmitters::Open(const Bake& bake) {
   vertex_count_ = bake.mesh.vertex_count();
   supported_ = bake.hierarchy.has_value();
   if (!supported_) return Status::Ok();
-  // A Bake built in memory has not been through the reader's checks.
-  std::string error = bake_format::CheckHierarchyNodes(*bake.hierarchy, bake.mesh);
-  if (error.empty()) error = bake_format::CheckHierarchyLinks(*bake.hierarchy);
-  if (!error.empty()) return Status(StatusCode::kInvalidArgument, "engine: hierarchy: " + error);
+  // The hierarchy's indices were checked by the engine's ValidateBake.
   RELIGHT_RETURN_IF_ERROR(solver_.Init(bake));
   const BakeHierarchy& h = *bake.hierarchy;
   surface_root_.assign(bake.mesh.surface_names.size(), kBakeNoIndex);
