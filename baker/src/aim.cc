@@ -1,5 +1,5 @@
 // Beam axis from pan/tilt and its inverse, with the mounting convention of
-// runtime/include/relight/bake.h:
+// runtime/bake/include/relight/bake/bake.h:
 //   hanging:  axis = (sin t cos p, sin t sin p, -cos t)
 //   standing: axis = (sin t cos p, sin t sin p, +cos t)
 #include <cmath>

@@ -8,7 +8,7 @@
 #include "hierarchy.h"
 #include "hierarchy_links.h"
 #include "mesher.h"
-#include "relight/bake.h"
+#include "relight/bake/bake.h"
 
 namespace relight::baker {
 

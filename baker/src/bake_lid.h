@@ -6,7 +6,7 @@
 // only rotates them).
 #pragma once
 
-#include "relight/bake.h"
+#include "relight/bake/bake.h"
 #include "relight/baker/scene.h"
 
 namespace relight::baker {

@@ -8,7 +8,7 @@
 #include "hierarchy_links.h"
 #include "link_brightness.h"
 #include "parallel_for.h"
-#include "relight/sh_index.h"
+#include "relight/base/sh_index.h"
 
 namespace relight::baker {
 namespace {

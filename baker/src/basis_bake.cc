@@ -11,7 +11,7 @@
 #include "reference.h"
 #include "relight/baker/baker.h"
 #include "relight/baker/photometry.h"
-#include "relight/sh_index.h"
+#include "relight/base/sh_index.h"
 
 namespace relight::baker {
 namespace {

@@ -1,5 +1,5 @@
 // Float64 Legendre/SH photometry: the reference the fixed-point runtime
-// (runtime/src/sh_eval.cc, legendre_weights.cc) is tested against.
+// (runtime/engine/src/sh_eval.cc, legendre_weights.cc) is tested against.
 //
 // Real SH are evaluated in Cartesian form (sh_index.h conventions):
 //   Y_lm = q_l^m(z) * C_m(x, y),  Y_l-m = q_l^m(z) * S_m(x, y),
@@ -13,7 +13,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "relight/sh_index.h"
+#include "relight/base/sh_index.h"
 
 namespace relight::baker {
 namespace {

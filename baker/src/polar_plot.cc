@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "relight/baker/photometry.h"
-#include "relight/sh_index.h"
+#include "relight/base/sh_index.h"
 
 namespace relight::baker {
 namespace {

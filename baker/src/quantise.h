@@ -1,4 +1,4 @@
-// float64 -> the runtime's integer formats (runtime/include/relight/fixed.h,
+// float64 -> the runtime's integer formats (runtime/base/include/relight/base/fixed.h,
 // bake.h). Every conversion rounds to nearest and saturates at its format's
 // limits; a block quantiser picks the QuantScale that maps the block's
 // largest magnitude to the largest code, so its round-trip error is at most
@@ -8,7 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "relight/fixed.h"
+#include "relight/base/fixed.h"
 
 namespace relight::baker {
 

@@ -10,12 +10,12 @@
 
 #include <CLI/CLI.hpp>
 
-#include "relight/bake.h"
+#include "relight/bake/bake.h"
 #include "relight/baker/accuracy.h"
 #include "relight/baker/baker.h"
 #include "relight/baker/lid_error.h"
 #include "relight/baker/scene.h"
-#include "relight/engine.h"
+#include "relight/engine/engine.h"
 
 namespace {
 

@@ -19,7 +19,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "relight/bake.h"
+#include "relight/bake/bake.h"
 #include "relight/baker/baker.h"
 #include "relight/baker/lid_error.h"
 #include "relight/baker/scene.h"

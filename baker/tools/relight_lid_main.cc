@@ -20,7 +20,7 @@
 #include "relight/baker/photometry.h"
 #include "relight/baker/polar_plot.h"
 #include "relight/baker/scene.h"
-#include "relight/sh_index.h"
+#include "relight/base/sh_index.h"
 
 namespace {
 

@@ -8,7 +8,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "relight/hal/param_change.h"
+#include "relight/base/param.h"
 
 namespace relight::hal {
 

@@ -13,7 +13,7 @@
 #include <mutex>
 #include <vector>
 
-#include "relight/hal/param_change.h"
+#include "relight/base/param.h"
 #include "relight/hal/register_map.h"
 
 namespace relight::hal {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
-#include "relight/console_value.h"
+#include "relight/base/console_value.h"
 
 namespace relight::hal {
 namespace {

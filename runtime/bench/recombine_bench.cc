@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "recombine.h"
-#include "relight/bake.h"
-#include "relight/engine.h"
-#include "relight/sh_index.h"
+#include "relight/bake/bake.h"
+#include "relight/engine/engine.h"
+#include "relight/base/sh_index.h"
 
 namespace {
 

@@ -18,7 +18,7 @@
 #include <cstdio>
 #include <string>
 
-#include "relight/engine.h"
+#include "relight/engine/engine.h"
 
 namespace {
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "relight/osmesa_frame.h"
+#include "relight/render/osmesa_frame.h"
 
 namespace relight::cli {
 

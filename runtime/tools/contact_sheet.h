@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "relight/status.h"
+#include "relight/base/status.h"
 
 namespace relight::cli {
 

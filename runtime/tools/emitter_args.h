@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "relight/engine.h"
-#include "relight/surface_emitter.h"
+#include "relight/engine/engine.h"
+#include "relight/engine/surface_emitter.h"
 
 namespace relight::cli {
 

@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "relight/engine.h"
-#include "relight/osmesa_frame.h"
-#include "relight/tone_map.h"
+#include "relight/engine/engine.h"
+#include "relight/render/osmesa_frame.h"
+#include "relight/engine/tone_map.h"
 
 namespace relight::cli {
 

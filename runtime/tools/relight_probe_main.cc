@@ -12,7 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include "lux_map_svg.h"
-#include "relight/engine.h"
+#include "relight/engine/engine.h"
 #include "set_args.h"
 
 namespace {

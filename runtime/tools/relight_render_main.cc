@@ -14,9 +14,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "relight/engine.h"
-#include "relight/osmesa_frame.h"
-#include "relight/pick.h"
+#include "relight/engine/engine.h"
+#include "relight/render/osmesa_frame.h"
+#include "relight/render/pick.h"
 #include "frame_pipeline.h"
 #include "emitter_args.h"
 #include "replay_frames.h"

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "relight/hal/replay_source.h"
-#include "relight/osmesa_frame.h"
+#include "relight/render/osmesa_frame.h"
 #include "contact_sheet.h"
 #include "set_args.h"
 
@@ -37,7 +37,7 @@ int RenderReplay(Engine& engine, const std::string& script_path, double fps, con
   }
   const int64_t frame_us = std::llround(1e6 / fps);
   const int frames = static_cast<int>(source.duration_us() / frame_us) + 1;
-  std::vector<hal::ParamChange> changes(256);
+  std::vector<ParamChange> changes(256);
   ContactSheetBuilder sheet_builder(sheet.width, sheet.height);
   const bool tty = isatty(STDOUT_FILENO) != 0;
   for (int i = 0; i < frames; ++i) {

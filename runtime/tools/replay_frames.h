@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "relight/engine.h"
+#include "relight/engine/engine.h"
 
 namespace relight::cli {
 

@@ -3,7 +3,7 @@
 namespace relight::cli {
 
 bool ParseSetArg(const std::string& text, SetArg* out, std::string* error) {
-  hal::ParamChange changes[3];
+  ParamChange changes[3];
   const int n = hal::ParseParamText(text, 0, changes, error);
   if (n == 0) {
     *error = "--set " + *error;
@@ -14,16 +14,16 @@ bool ParseSetArg(const std::string& text, SetArg* out, std::string* error) {
   if (n == 3) {
     arg.param = "colour";
   } else {
-    arg.param = hal::ParamName(changes[0].param);
+    arg.param = ParamName(changes[0].param);
   }
   for (int i = 0; i < n; ++i) {
-    arg.values.push_back(hal::IsAngle(changes[i].param) ? changes[i].value / 65536.0 : changes[i].value / 32767.0);
+    arg.values.push_back(IsAngle(changes[i].param) ? changes[i].value / 65536.0 : changes[i].value / 32767.0);
   }
   *out = std::move(arg);
   return true;
 }
 
-bool ApplyChange(Engine& engine, const hal::ParamChange& change, std::string* error) {
+bool ApplyChange(Engine& engine, const ParamChange& change, std::string* error) {
   const int index = engine.FindLuminaire(change.fixture);
   if (index < 0) {
     std::string names;
@@ -36,23 +36,23 @@ bool ApplyChange(Engine& engine, const hal::ParamChange& change, std::string* er
   const Q1_15 level = Q1_15::FromRaw(static_cast<int16_t>(change.value < 0 ? 0 : (change.value > 32767 ? 32767 : change.value)));
   Status st;
   switch (change.param) {
-    case hal::Param::kPan: st = engine.SetPanTilt(index, angle, s.tilt_deg); break;
-    case hal::Param::kTilt: st = engine.SetPanTilt(index, s.pan_deg, angle); break;
-    case hal::Param::kDimmer: st = engine.SetDimmer(index, level); break;
-    case hal::Param::kRed: st = engine.SetColour(index, level, s.rgb[1], s.rgb[2]); break;
-    case hal::Param::kGreen: st = engine.SetColour(index, s.rgb[0], level, s.rgb[2]); break;
-    case hal::Param::kBlue: st = engine.SetColour(index, s.rgb[0], s.rgb[1], level); break;
-    case hal::Param::kRoll: st = engine.SetRoll(index, angle); break;
+    case Param::kPan: st = engine.SetPanTilt(index, angle, s.tilt_deg); break;
+    case Param::kTilt: st = engine.SetPanTilt(index, s.pan_deg, angle); break;
+    case Param::kDimmer: st = engine.SetDimmer(index, level); break;
+    case Param::kRed: st = engine.SetColour(index, level, s.rgb[1], s.rgb[2]); break;
+    case Param::kGreen: st = engine.SetColour(index, s.rgb[0], level, s.rgb[2]); break;
+    case Param::kBlue: st = engine.SetColour(index, s.rgb[0], s.rgb[1], level); break;
+    case Param::kRoll: st = engine.SetRoll(index, angle); break;
   }
   if (!st.ok()) {
-    *error = std::string(change.fixture) + "." + hal::ParamName(change.param) + ": " + st.ToString();
+    *error = std::string(change.fixture) + "." + ParamName(change.param) + ": " + st.ToString();
     return false;
   }
   return true;
 }
 
 bool ApplySetText(Engine& engine, const std::string& text, std::string* error) {
-  hal::ParamChange changes[3];
+  ParamChange changes[3];
   const int n = hal::ParseParamText(text, 0, changes, error);
   if (n == 0) {
     *error = "--set " + *error;

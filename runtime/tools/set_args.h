@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "relight/engine.h"
-#include "relight/hal/param_change.h"
+#include "relight/engine/engine.h"
+#include "relight/hal/param_text.h"
 
 namespace relight::cli {
 
@@ -23,7 +23,7 @@ bool ParseSetArg(const std::string& text, SetArg* out, std::string* error);
 // Applies one change to the engine's fixture state. Fails with a message
 // naming the fixture if the bake has no luminaire of that name, listing the
 // ones it has.
-bool ApplyChange(Engine& engine, const hal::ParamChange& change, std::string* error);
+bool ApplyChange(Engine& engine, const ParamChange& change, std::string* error);
 // Parses and applies one --set argument.
 bool ApplySetText(Engine& engine, const std::string& text, std::string* error);
 

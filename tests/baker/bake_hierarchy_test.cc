@@ -17,7 +17,7 @@
 #include "bake_test_bake.h"
 #include "baker_core.h"
 #include "radiosity_vec.h"
-#include "relight/bake.h"
+#include "relight/bake/bake.h"
 #include "relight/baker/baker.h"
 #include "test_scenes.h"
 

@@ -12,7 +12,7 @@
 #include <random>
 #include <vector>
 
-#include "relight/sh_index.h"
+#include "relight/base/sh_index.h"
 
 namespace relight::baker {
 namespace {

@@ -721,7 +721,7 @@ TEST(Lid, TableInterpolatesLinearlyAndEndsAtLastPoint) {
   EXPECT_EQ(lid.Evaluate(180), 0.0);
 }
 
-// --- pan/tilt convention (runtime/include/relight/bake.h) -----------------------
+// --- pan/tilt convention (runtime/bake/include/relight/bake/bake.h) -----------------------
 
 TEST(Aim, BeamAxisFollowsMountingConvention) {
   for (MountingKind m : {MountingKind::kHanging, MountingKind::kStanding}) {

@@ -13,7 +13,7 @@
 #include "relight/baker/fixture_frame.h"
 #include "relight/baker/photometric_file.h"
 #include "relight/baker/photometry.h"
-#include "relight/sh_index.h"
+#include "relight/base/sh_index.h"
 
 namespace relight::baker {
 namespace {

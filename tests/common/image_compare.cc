@@ -5,7 +5,7 @@
 #include <cstring>
 #include <vector>
 
-#include "relight/osmesa_frame.h"
+#include "relight/render/osmesa_frame.h"
 
 namespace relight {
 namespace test_image {

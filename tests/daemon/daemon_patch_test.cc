@@ -13,7 +13,7 @@
 
 #include "../runtime/bake_test_bake.h"
 #include "daemon_test_support.h"
-#include "relight/console_value.h"
+#include "relight/base/console_value.h"
 #include "relight/hal/modbus_tcp_server.h"
 
 namespace relight::daemon {

@@ -112,13 +112,13 @@ TEST(Daemon, FadesRampLinearlyAndTheSquareCurveShapesTheDimmer) {
   rig.daemon.SetFrameObserver([&](const FrameInfo& f) {
     seen.push_back(rig.daemon.engine().state(0));
     if (f.frame == 1) {
-      hal::ParamChange pan;
+      ParamChange pan;
       std::snprintf(pan.fixture, sizeof pan.fixture, "spot");
-      pan.param = hal::Param::kPan;
+      pan.param = Param::kPan;
       pan.value = 100 << 16;
       rig.mock->Inject(pan);
-      hal::ParamChange dim = pan;
-      dim.param = hal::Param::kDimmer;
+      ParamChange dim = pan;
+      dim.param = Param::kDimmer;
       dim.value = 16384;  // half: square law gives a quarter
       rig.mock->Inject(dim);
     }
@@ -134,7 +134,7 @@ TEST(Daemon, FadesRampLinearlyAndTheSquareCurveShapesTheDimmer) {
   EXPECT_EQ(seen[13].dimmer.raw(), 8192);
   // Dimmer ramps in control level, from the bake's default (full), then the curve.
   const int32_t control_mid = 32767 + (16384 - 32767) / 2;
-  EXPECT_EQ(seen[7].dimmer.raw(), hal::ApplyDimmerCurve(hal::DimmerCurve::kSquare, control_mid));
+  EXPECT_EQ(seen[7].dimmer.raw(), control::ApplyDimmerCurve(hal::DimmerCurve::kSquare, control_mid));
 }
 
 TEST(Daemon, SighupReloadKeepsTheOldPatchWhenTheNewOneIsBroken) {

@@ -11,7 +11,7 @@
 
 #include "hal_test_support.h"
 #include "modbus_test_client.h"
-#include "relight/hal/log.h"
+#include "relight/base/log.h"
 #include "relight/hal/modbus_poller.h"
 #include "relight/hal/modbus_tcp_server.h"
 

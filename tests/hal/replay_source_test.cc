@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "relight/hal/param_change.h"
+#include "relight/hal/param_text.h"
 #include "relight/hal/replay_source.h"
 
 namespace relight::hal {

@@ -9,7 +9,7 @@
 
 #include "cornell_fixture.h"
 #include "relight/baker/accuracy.h"
-#include "relight/engine.h"
+#include "relight/engine/engine.h"
 
 namespace relight::test {
 namespace {

@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "relight/bake.h"
+#include "relight/bake/bake.h"
 #include "relight/baker/baker.h"
 #include "relight/baker/scene.h"
 

@@ -7,9 +7,9 @@
 
 #include "common/image_compare.h"
 #include "cornell_fixture.h"
-#include "relight/engine.h"
-#include "relight/osmesa_frame.h"
-#include "relight/tone_map.h"
+#include "relight/engine/engine.h"
+#include "relight/render/osmesa_frame.h"
+#include "relight/engine/tone_map.h"
 
 namespace relight::test {
 namespace {

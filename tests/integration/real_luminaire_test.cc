@@ -14,12 +14,12 @@
 #include <string>
 #include <vector>
 
-#include "relight/bake.h"
+#include "relight/bake/bake.h"
 #include "relight/baker/accuracy.h"
 #include "relight/baker/baker.h"
 #include "relight/baker/lid_error.h"
 #include "relight/baker/photometric_file.h"
-#include "relight/engine.h"
+#include "relight/engine/engine.h"
 
 namespace relight::test {
 namespace {

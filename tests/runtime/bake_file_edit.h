@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "bake_test_bake.h"
-#include "relight/bake.h"
+#include "relight/bake/bake.h"
 
 namespace relight::bake_test {
 

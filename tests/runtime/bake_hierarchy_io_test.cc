@@ -14,7 +14,7 @@
 
 #include "bake_file_edit.h"
 #include "bake_test_bake.h"
-#include "relight/bake.h"
+#include "relight/bake/bake.h"
 
 namespace relight {
 namespace {

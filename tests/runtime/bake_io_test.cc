@@ -26,8 +26,8 @@
 
 #include "bake_file_edit.h"
 #include "bake_test_bake.h"
-#include "relight/bake.h"
-#include "relight/sh_index.h"
+#include "relight/bake/bake.h"
+#include "relight/base/sh_index.h"
 
 // --- The largest single allocation while tracking, to prove a hostile
 // header cannot make the reader allocate what the file does not hold.

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "relight/bake.h"
-#include "relight/sh_index.h"
+#include "relight/bake/bake.h"
+#include "relight/base/sh_index.h"
 
 namespace relight::bake_test {
 

@@ -8,7 +8,7 @@
 #include "console_aim.h"
 #include "relight/baker/baker.h"
 #include "relight/baker/fixture_frame.h"
-#include "relight/engine.h"
+#include "relight/engine/engine.h"
 
 namespace relight {
 namespace {

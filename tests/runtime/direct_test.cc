@@ -11,7 +11,7 @@
 #include "engine_test_support.h"
 #include "lid_lookup.h"
 #include "relight/baker/photometry.h"
-#include "relight/fixed_math.h"
+#include "relight/base/fixed_math.h"
 #include "weights.h"
 
 namespace relight {

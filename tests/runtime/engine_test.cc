@@ -16,9 +16,9 @@
 
 #include "engine_test_support.h"
 #include "relight/baker/photometry.h"
-#include "relight/bake.h"
-#include "relight/engine.h"
-#include "relight/sh_index.h"
+#include "relight/bake/bake.h"
+#include "relight/engine/engine.h"
+#include "relight/base/sh_index.h"
 
 #include "count_allocations.h"
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "relight/baker/photometry.h"
-#include "relight/fixed.h"
+#include "relight/base/fixed.h"
 
 namespace relight::testing {
 

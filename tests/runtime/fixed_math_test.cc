@@ -1,6 +1,6 @@
-// Integer elementary functions (runtime/src/fixed_math.cc) against exact
+// Integer elementary functions (runtime/base/src/fixed_math.cc) against exact
 // integer checks and long-double references, with tolerances in LSB.
-#include "relight/fixed_math.h"
+#include "relight/base/fixed_math.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-// Fixed-point Legendre weights (runtime/src/legendre_weights.cc, Dobashi
+// Fixed-point Legendre weights (runtime/engine/src/legendre_weights.cc, Dobashi
 // Eq. 19-21) against the baker's float64 LegendreWeights.
-#include "relight/legendre_weights.h"
+#include "relight/engine/legendre_weights.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "relight/baker/photometry.h"
-#include "relight/sh_index.h"
+#include "relight/base/sh_index.h"
 
 namespace relight {
 namespace {

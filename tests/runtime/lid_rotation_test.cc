@@ -19,8 +19,8 @@
 #include "relight/baker/analytic_photometry.h"
 #include "relight/baker/sh_rotation.h"
 #include "relight/baker/photometry.h"
-#include "relight/engine.h"
-#include "relight/sh_rotation.h"
+#include "relight/engine/engine.h"
+#include "relight/engine/sh_rotation.h"
 #include "weights.h"
 
 namespace relight {

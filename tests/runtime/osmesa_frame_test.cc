@@ -1,7 +1,7 @@
 // The OSMesa renderer against float64 references: Gouraud colours and
 // triangle IDs per pixel from an analytic camera, unprojection against
 // ray-plane intersection; PNG files; the golden-image comparison utility.
-#include "relight/osmesa_frame.h"
+#include "relight/render/osmesa_frame.h"
 
 #include <gtest/gtest.h>
 #include <png.h>

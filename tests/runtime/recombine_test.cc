@@ -13,8 +13,8 @@
 #include "recombine.h"
 #include "recombine_avx2.h"
 #include "relight/baker/photometry.h"
-#include "relight/sh_eval.h"
-#include "relight/sh_index.h"
+#include "relight/engine/sh_eval.h"
+#include "relight/base/sh_index.h"
 #include "weights.h"
 
 namespace relight {

@@ -1,6 +1,6 @@
-// Fixed-point SH, A_lm and sigma (runtime/src/sh_eval.cc) against the
+// Fixed-point SH, A_lm and sigma (runtime/engine/src/sh_eval.cc) against the
 // baker's float64 photometry, errors in LSB of the output format.
-#include "relight/sh_eval.h"
+#include "relight/engine/sh_eval.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "relight/baker/photometry.h"
-#include "relight/fixed_math.h"
+#include "relight/base/fixed_math.h"
 
 namespace relight {
 namespace {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "radiosity_vec.h"
-#include "relight/bake.h"
+#include "relight/bake/bake.h"
 #include "relight/baker/baker.h"
 #include "surface_emitter_coverage.h"
 #include "surface_emitter_test_support.h"

@@ -13,7 +13,7 @@
 #include "count_allocations.h"
 #include "radiosity_vec.h"
 #include "relight/baker/baker.h"
-#include "relight/engine.h"
+#include "relight/engine/engine.h"
 #include "surface_emitter_test_support.h"
 #include "test_scenes.h"
 

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "radiosity_vec.h"
-#include "relight/bake.h"
+#include "relight/bake/bake.h"
 #include "relight/baker/scene.h"
-#include "relight/surface_emitter.h"
+#include "relight/engine/surface_emitter.h"
 
 namespace relight::testing {
 

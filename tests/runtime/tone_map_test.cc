@@ -7,7 +7,7 @@
 #include <limits>
 #include <memory>
 
-#include "relight/tone_map.h"
+#include "relight/engine/tone_map.h"
 
 namespace relight {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "../change_ring.h"
 #include "../gpio_decoder.h"
-#include "relight/hal/log.h"
+#include "relight/base/log.h"
 
 namespace relight::hal {
 

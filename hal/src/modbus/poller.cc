@@ -11,8 +11,8 @@
 #include <thread>
 
 #include "../register_input.h"
-#include "relight/hal/clock.h"
-#include "relight/hal/log.h"
+#include "relight/base/clock.h"
+#include "relight/base/log.h"
 #include "relight/hal/modbus_poller.h"
 
 namespace relight::hal {

@@ -1,6 +1,6 @@
 #include "register_bank.h"
 
-#include "relight/hal/log.h"
+#include "relight/base/log.h"
 #include "request_check.h"
 
 namespace relight::hal {

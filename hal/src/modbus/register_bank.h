@@ -16,7 +16,7 @@
 #include "../register_input.h"
 #include "relight/hal/modbus_server.h"
 #include "relight/hal/register_map.h"
-#include "relight/status.h"
+#include "relight/base/status.h"
 
 namespace relight::hal {
 

@@ -16,8 +16,8 @@
 #include <thread>
 
 #include "register_bank.h"
-#include "relight/hal/clock.h"
-#include "relight/hal/log.h"
+#include "relight/base/clock.h"
+#include "relight/base/log.h"
 #include "relight/hal/modbus_tcp_server.h"
 
 namespace relight::hal {

@@ -10,6 +10,7 @@
 #include <initializer_list>
 #include <sstream>
 
+#include "relight/hal/param_text.h"
 #include "relight/hal/patch.h"
 
 namespace relight::hal {

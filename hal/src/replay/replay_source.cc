@@ -1,5 +1,7 @@
 #include "relight/hal/replay_source.h"
 
+#include "relight/hal/param_text.h"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdio>

@@ -33,8 +33,8 @@
 #include <vector>
 
 #include "daemon.h"
-#include "relight/hal/clock.h"
-#include "relight/hal/log.h"
+#include "relight/base/clock.h"
+#include "relight/base/log.h"
 #include "relight/hal/modbus_tcp_server.h"
 #include "relight/hal/register_map.h"
 
@@ -190,7 +190,7 @@ int Latency(const Args& a) {
       want_value = Expected(patch_f, offsets[which], value);
       shown_out_us = 0;
     }
-    const int64_t sent_us = hal::MonotonicUs();
+    const int64_t sent_us = MonotonicUs();
     if (modbus_write_register(ctx, patch_f.modbus_base + offsets[which], value) != 1) {
       std::fprintf(stderr, "relightd_bench: write failed: %s\n", modbus_strerror(errno));
       break;
@@ -263,7 +263,7 @@ int Soak(const Args& a) {
     return static_cast<uint16_t>(r & 0xFFFF);
   };
   std::vector<std::thread> threads;
-  const int64_t end_us = hal::MonotonicUs() + static_cast<int64_t>(a.seconds * 1e6);
+  const int64_t end_us = MonotonicUs() + static_cast<int64_t>(a.seconds * 1e6);
   for (int k = 0; k < n; ++k) {
     threads.emplace_back([&, k] {
       modbus_t* ctx = modbus_new_tcp("127.0.0.1", rig.port);
@@ -274,21 +274,21 @@ int Soak(const Args& a) {
       }
       std::mt19937 rng(static_cast<uint32_t>(k));
       const int64_t step_us = 1000000 / a.rate;
-      int64_t next = hal::MonotonicUs();
-      for (int i = 0; hal::MonotonicUs() < end_us; ++i) {
+      int64_t next = MonotonicUs();
+      for (int i = 0; MonotonicUs() < end_us; ++i) {
         const int addr = k + n * (i % ((regs - k + n - 1) / n));
         const uint16_t v = legal(addr, static_cast<uint32_t>(rng()));
-        const int64_t t0 = hal::MonotonicUs();
+        const int64_t t0 = MonotonicUs();
         if (modbus_write_register(ctx, addr, v) == 1) {
           ++ok[static_cast<size_t>(k)];
           last[static_cast<size_t>(addr)] = v;  // only this client writes addr
-          response_us[static_cast<size_t>(k)].push_back(hal::MonotonicUs() - t0);
+          response_us[static_cast<size_t>(k)].push_back(MonotonicUs() - t0);
         } else {
           ++failed[static_cast<size_t>(k)];
           modbus_flush(ctx);
         }
         next += step_us;
-        const int64_t now = hal::MonotonicUs();
+        const int64_t now = MonotonicUs();
         if (next > now) std::this_thread::sleep_for(std::chrono::microseconds(next - now));
       }
       modbus_close(ctx);
@@ -301,7 +301,7 @@ int Soak(const Args& a) {
     modbus_t* silent = modbus_new_tcp("127.0.0.1", rig.port);
     modbus_connect(silent);
     std::mt19937 rng(99);
-    while (hal::MonotonicUs() < end_us) {
+    while (MonotonicUs() < end_us) {
       modbus_t* g = modbus_new_tcp("127.0.0.1", rig.port);
       if (modbus_connect(g) == 0) {
         uint8_t junk[64];
@@ -381,8 +381,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   // The server logs every connection; the garbage client makes many.
-  relight::hal::SetLogSink([](relight::hal::LogLevel level, const std::string& line) {
-    if (level != relight::hal::LogLevel::kInfo) std::fprintf(stderr, "%s\n", line.c_str());
+  relight::SetLogSink([](relight::LogLevel level, const std::string& line) {
+    if (level != relight::LogLevel::kInfo) std::fprintf(stderr, "%s\n", line.c_str());
   });
   return args.mode == "latency" ? relight::daemon::Latency(args) : relight::daemon::Soak(args);
 }

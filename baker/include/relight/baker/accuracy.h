@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "relight/baker/baker.h"
-#include "relight/engine.h"
+#include "relight/engine/engine.h"
 
 namespace relight::baker {
 

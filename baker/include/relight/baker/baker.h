@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "relight/bake.h"
+#include "relight/bake/bake.h"
 #include "relight/baker/scene.h"
 
 namespace relight::baker {

@@ -1,7 +1,7 @@
 // Where a fixture's photometric frame points in the world (float64): the
 // mounting (hanging, standing, wall), the base's yaw, pan, tilt and the roll
-// about the beam axis. runtime/include/relight/bake.h defines the convention;
-// the runtime mirrors it in fixed point (runtime/src/fixture_frame.h) and the
+// about the beam axis. runtime/bake/include/relight/bake/bake.h defines the convention;
+// the runtime mirrors it in fixed point (runtime/engine/src/fixture_frame.h) and the
 // reference solve, the baker and the tests use this one.
 #pragma once
 

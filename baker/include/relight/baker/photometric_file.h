@@ -8,7 +8,7 @@
 // luminaire's nadir (its beam axis, gamma 0) towards its zenith (180); C is
 // the azimuth about that axis, counter-clockwise seen from behind the
 // luminaire looking along its beam (from above a hanging luminaire), C 0 the
-// luminaire's length / C0 plane. runtime/include/relight/bake.h places this
+// luminaire's length / C0 plane. runtime/bake/include/relight/bake/bake.h places this
 // frame in the world (mounting, pan, tilt, roll).
 #pragma once
 

@@ -1,6 +1,6 @@
 // Float64 photometry and spherical-harmonic math for the baker and for the
 // reference every accuracy figure is measured against. Conventions (angles,
-// normalisation, index order) are those of runtime/include/relight/sh_index.h;
+// normalisation, index order) are those of runtime/base/include/relight/base/sh_index.h;
 // the fixed-point runtime mirrors each function here (runtime/include/relight/
 // sh_eval.h, legendre_weights.h) and tests hold the two together.
 #pragma once
@@ -31,7 +31,7 @@ void UpdateLegendreWeights(std::vector<double>* weights, int M, int k, double ol
 // Samples a Lid at M+1 uniform gamma steps over [0, 180] degrees.
 std::vector<double> SampleLid(const Lid& lid, int M);
 
-// Beam axis of a fixture (runtime/include/relight/bake.h gives the convention).
+// Beam axis of a fixture (runtime/bake/include/relight/bake/bake.h gives the convention).
 Vec3 BeamAxis(MountingKind mounting, double pan_deg, double tilt_deg);
 // Pan and tilt (degrees) that aim a fixture at `target` from `position`.
 void AimAt(MountingKind mounting, const Vec3& position, const Vec3& target, double* pan_deg,

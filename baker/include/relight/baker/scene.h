@@ -75,7 +75,7 @@ struct Luminaire {
   std::string name;
   Vec3 position{0, 0, 0};
   MountingKind mounting = MountingKind::kHanging;
-  double pan_deg = 0, tilt_deg = 0;  // default aim (see runtime/include/relight/bake.h for the convention)
+  double pan_deg = 0, tilt_deg = 0;  // default aim (see runtime/bake/include/relight/bake/bake.h for the convention)
   double yaw_deg = 0;                // turn of the base about world z (a wall: the way it faces)
   double roll_deg = 0;               // turn about the beam axis, towards increasing C
   double pan_range_deg = 540, tilt_range_deg = 270;  // console 16-bit ranges, centred on 0

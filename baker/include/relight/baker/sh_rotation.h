@@ -3,14 +3,14 @@
 // build the rotation matrix of each band from the 3 x 3 rotation, and the
 // SH projection of a (C, gamma) LID in the fixture frame (bake.h) gives the
 // coefficients they rotate. The runtime mirrors the rotation in fixed point
-// (runtime/include/relight/sh_rotation.h).
+// (runtime/engine/include/relight/engine/sh_rotation.h).
 #pragma once
 
 #include <cstddef>
 #include <vector>
 
 #include "relight/baker/scene.h"
-#include "relight/sh_rotation.h"  // ShRotationBandOffset
+#include "relight/base/sh_index.h"  // ShRotationBandOffset
 
 namespace relight::baker {
 

@@ -8,8 +8,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "relight/hal/param_change.h"
-#include "relight/status.h"
+#include "relight/base/param.h"
+#include "relight/base/status.h"
 
 namespace relight::hal {
 

@@ -24,9 +24,9 @@
 #include <string>
 #include <vector>
 
-#include "relight/hal/param_change.h"
+#include "relight/base/param.h"
 #include "relight/hal/register_layout.h"
-#include "relight/status.h"
+#include "relight/base/status.h"
 
 namespace relight::hal {
 

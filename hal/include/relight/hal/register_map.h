@@ -21,10 +21,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "relight/engine.h"
-#include "relight/hal/param_change.h"
+#include "relight/base/fixture_state.h"
+#include "relight/base/param.h"
 #include "relight/hal/patch.h"
-#include "relight/status.h"
+#include "relight/base/status.h"
 
 namespace relight::hal {
 
@@ -57,7 +57,7 @@ inline constexpr uint8_t kExceptionIllegalAddress = 0x02;
 inline constexpr uint8_t kExceptionIllegalValue = 0x03;
 
 // Register value <-> parameter, integer-only, round to nearest. Angles are
-// relight/console_value.h's, the engine's own 16-bit conversion.
+// relight/base/console_value.h's, the engine's own 16-bit conversion.
 int32_t AngleQ16FromRegister(uint16_t reg, int32_t range_q16);  // Q16.16 degrees
 uint16_t RegisterFromAngleQ16(int32_t deg_q16, int32_t range_q16);  // clamps to 0..65535
 int32_t LevelQ15FromRegister16(uint16_t reg);  // 0..65535 -> 0..32767

@@ -1,0 +1,101 @@
+#include "relight/hal/param_text.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+namespace relight::hal {
+namespace {
+
+bool ParseNumber(const std::string& s, double* out) {
+  if (s.empty()) return false;
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (errno != 0 || end != s.c_str() + s.size() || !std::isfinite(v)) return false;
+  *out = v;
+  return true;
+}
+
+int32_t LevelQ15(double level) { return static_cast<int32_t>(std::lround(level * 32767.0)); }
+int32_t DegreesQ16(double degrees) { return static_cast<int32_t>(std::llround(degrees * 65536.0)); }
+
+bool ValidFixtureName(const std::string& name) {
+  if (name.empty() || name.size() > kMaxFixtureName) return false;
+  for (char ch : name) {
+    const bool ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') ||
+                    ch == '_' || ch == '-';
+    if (!ok) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+int ParseParamText(const std::string& text, int64_t time_us, ParamChange out[3], std::string* error) {
+  const auto fail = [&](const std::string& why) {
+    *error = "'" + text + "': " + why;
+    return 0;
+  };
+  const size_t eq = text.find('=');
+  const size_t dot = eq == std::string::npos ? std::string::npos : text.rfind('.', eq);
+  if (eq == std::string::npos || dot == std::string::npos || dot == 0 || dot + 1 >= eq) {
+    return fail("expected FIXTURE.PARAM=VALUE, e.g. spot1.pan=30");
+  }
+  const std::string fixture = text.substr(0, dot);
+  const std::string param = text.substr(dot + 1, eq - dot - 1);
+  std::string value = text.substr(eq + 1);
+  if (!ValidFixtureName(fixture)) {
+    return fail("fixture name must be 1.." + std::to_string(kMaxFixtureName) + " of A-Z a-z 0-9 _ -");
+  }
+  ParamChange base;
+  base.time_us = time_us;
+  std::memcpy(base.fixture, fixture.c_str(), fixture.size() + 1);
+
+  if (param == "colour" || param == "color") {
+    double rgb[3];
+    size_t start = 0;
+    for (int i = 0; i < 3; ++i) {
+      const size_t comma = value.find(',', start);
+      if ((i < 2) != (comma != std::string::npos)) return fail("colour wants exactly three numbers R,G,B");
+      const std::string part = value.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+      if (!ParseNumber(part, &rgb[i]) || rgb[i] < 0 || rgb[i] > 1) {
+        return fail("colour wants R,G,B with each in 0..1");
+      }
+      start = comma + 1;
+    }
+    const Param params[3] = {Param::kRed, Param::kGreen, Param::kBlue};
+    for (int i = 0; i < 3; ++i) {
+      out[i] = base;
+      out[i].param = params[i];
+      out[i].value = LevelQ15(rgb[i]);
+    }
+    return 3;
+  }
+
+  Param kind = Param::kDimmer;
+  if (!ParamFromName(param, &kind)) {
+    return fail("unknown parameter '" + param + "' (pan, tilt, roll, dimmer, r, g, b, colour)");
+  }
+  bool percent = false;
+  if (param == "dimmer" && !value.empty() && value.back() == '%') {
+    percent = true;
+    value.pop_back();
+  }
+  double v = 0;
+  if (!ParseNumber(value, &v)) return fail("'" + value + "' is not a number");
+  if (percent) v /= 100.0;
+  out[0] = base;
+  out[0].param = kind;
+  if (IsAngle(kind)) {
+    if (v < -720 || v > 720) return fail(param + " must be in -720..720 degrees");
+    out[0].value = DegreesQ16(v);
+  } else {
+    if (v < 0 || v > 1) return fail(param + " must be in 0..1" + (param == "dimmer" ? " (or 0..100%)" : ""));
+    out[0].value = LevelQ15(v);
+  }
+  return 1;
+}
+
+}  // namespace relight::hal

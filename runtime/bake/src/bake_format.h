@@ -1,0 +1,166 @@
+// On-disk layout of a bake file, format version 3: the constants the writer
+// and the reader share. docs/bake-format.md is the specification; keep the
+// two in step. Private to the runtime.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "bake_bytes.h"
+#include "relight/bake/bake.h"
+#include "relight/base/sh_index.h"
+
+namespace relight::bake_format {
+
+// --- File header (28 bytes) and table of contents (36 bytes per section).
+inline constexpr uint8_t kMagic[8] = {'R', 'E', 'L', 'I', 'G', 'H', 'T', '\0'};
+inline constexpr uint32_t kVersion = 3;
+// Version 1 files still read: their LUMI sections end after the LID samples
+// (no orientation, ranges or (C, gamma) table; defaults apply).
+inline constexpr uint32_t kOldestVersion = 1;
+// The writer stamps the lowest version that holds the bake: 2 without a
+// hierarchy, so readers that predate HIER and LINK still read those files.
+inline constexpr uint32_t kVersionWithoutHierarchy = 2;
+inline constexpr uint32_t kFirstVersionWithHierarchy = 3;
+inline constexpr size_t kVersionOffset = 8;
+inline constexpr size_t kSectionCountOffset = 12;
+inline constexpr size_t kFileSizeOffset = 16;
+inline constexpr size_t kHeaderCrcOffset = 24;  // crc32 of bytes [0, 24) then of the TOC
+inline constexpr size_t kHeaderBytes = 28;
+inline constexpr size_t kTocEntryBytes = 36;  // tag, flags, offset, stored, raw, crc
+inline constexpr uint32_t kFlagZstd = 1u;     // bit 0: stored bytes are one zstd frame
+inline constexpr uint32_t kKnownFlags = kFlagZstd;
+inline constexpr int kZstdLevel = 6;
+inline constexpr int kZstdWorkers = 2;
+
+// A fourcc reads as its four ASCII letters in file order.
+constexpr uint32_t Fourcc(char a, char b, char c, char d) {
+  return static_cast<uint32_t>(static_cast<uint8_t>(a)) |
+         static_cast<uint32_t>(static_cast<uint8_t>(b)) << 8 |
+         static_cast<uint32_t>(static_cast<uint8_t>(c)) << 16 |
+         static_cast<uint32_t>(static_cast<uint8_t>(d)) << 24;
+}
+inline constexpr uint32_t kTagMeta = Fourcc('M', 'E', 'T', 'A');
+inline constexpr uint32_t kTagMesh = Fourcc('M', 'E', 'S', 'H');
+inline constexpr uint32_t kTagGrid = Fourcc('G', 'R', 'I', 'D');
+inline constexpr uint32_t kTagLumi = Fourcc('L', 'U', 'M', 'I');
+inline constexpr uint32_t kTagDirect = Fourcc('D', 'I', 'R', 'T');
+inline constexpr uint32_t kTagBasis = Fourcc('B', 'A', 'S', 'E');
+inline constexpr uint32_t kTagHierarchy = Fourcc('H', 'I', 'E', 'R');
+inline constexpr uint32_t kTagLinks = Fourcc('L', 'I', 'N', 'K');
+
+struct TocEntry {
+  uint32_t tag = 0, flags = 0;
+  uint64_t offset = 0, stored = 0, raw = 0;
+  uint32_t crc = 0;
+};
+
+inline void StoreTocEntry(uint8_t* p, const TocEntry& e) {
+  StoreLe(p, e.tag);
+  StoreLe(p + 4, e.flags);
+  StoreLe(p + 8, e.offset);
+  StoreLe(p + 16, e.stored);
+  StoreLe(p + 24, e.raw);
+  StoreLe(p + 32, e.crc);
+}
+
+inline TocEntry LoadTocEntry(const uint8_t* p) {
+  TocEntry e;
+  e.tag = LoadLe<uint32_t>(p);
+  e.flags = LoadLe<uint32_t>(p + 4);
+  e.offset = LoadLe<uint64_t>(p + 8);
+  e.stored = LoadLe<uint64_t>(p + 16);
+  e.raw = LoadLe<uint64_t>(p + 24);
+  e.crc = LoadLe<uint32_t>(p + 32);
+  return e;
+}
+
+// --- Plausibility limits: a hostile header cannot ask for more than these.
+inline constexpr uint32_t kMaxNameBytes = 255;
+inline constexpr uint32_t kMaxVertices = 1u << 26;
+inline constexpr uint32_t kMaxTriangles = 1u << 27;
+inline constexpr uint32_t kMaxSurfaces = 1u << 16;
+inline constexpr uint32_t kMaxGrids = 64;
+inline constexpr uint32_t kMaxGridPoints = 1u << 24;  // per grid
+inline constexpr uint32_t kMaxLuminaires = 256;
+inline constexpr uint32_t kMinLidSamples = 3;
+inline constexpr uint32_t kMaxLidSamples = 65537;
+inline constexpr int64_t kMaxCandelaRaw = int64_t{1} << 47;  // 2^31 cd in Q48.16
+// A (C, gamma) table: planes 0..360 and gammas, and values in all.
+inline constexpr uint32_t kMinLidPlanes = 3;
+inline constexpr uint32_t kMaxLidPlanes = 1441;
+inline constexpr uint32_t kMinLidGammas = 2;
+inline constexpr uint32_t kMaxLidGammas = 1441;
+inline constexpr uint64_t kMaxLidTableValues = uint64_t{1} << 20;
+inline constexpr int64_t kMaxShCoefficientRaw = int64_t{1} << 50;  // |c| <= 2^34 cd in Q48.16
+inline constexpr int32_t kMaxTurnRaw = 360 << 16;   // yaw, roll: [-360, 360] degrees
+inline constexpr int32_t kMaxPanRangeRaw = 720 << 16;
+inline constexpr int32_t kMaxTiltRangeRaw = 360 << 16;
+inline constexpr int32_t kMinScaleExponent = -128;
+inline constexpr int32_t kMaxScaleExponent = 127;
+inline constexpr int32_t kScaleMantissaMin = int32_t{1} << 29;
+inline constexpr int32_t kScaleMantissaEnd = int32_t{1} << 30;
+// Q1.14 unit vectors: |v|^2 (Q2.28) within 2^28 +- 2^22, i.e. |v| = 1 +- 0.8 %.
+inline constexpr int64_t kUnitSquared = int64_t{1} << 28;
+inline constexpr int64_t kUnitSquaredTolerance = int64_t{1} << 22;
+// zstd emits at best one 4-byte RLE block per 128 KiB (ratio 32768); twice
+// that is a safe bound on what an honest frame can expand to.
+inline constexpr uint64_t kMaxZstdExpansion = 65536;
+inline constexpr uint32_t kMaxSections =
+    2 + kMaxGrids + kMaxLuminaires * (1 + 2 * (1 + kMaxGrids)) + 2;
+// Hierarchy: an inner node has at least 2 children and a leaf at least one
+// triangle, so there are fewer than 2 T nodes.
+inline constexpr uint32_t kMinNodeCorners = 3;
+inline constexpr uint32_t kMinChildren = 2;
+inline constexpr uint64_t kMaxNodeAreaRaw = uint64_t{1} << 56;  // Q32.32: 2^24 m^2
+inline constexpr uint32_t kMaxLinks = 1u << 28;
+
+// --- Payload sizes in bytes (docs/bake-format.md, one table per section).
+inline constexpr uint64_t kStringBytes = 4;  // u32 length; the bytes follow
+inline constexpr uint64_t kMetaFixedBytes = 4 + 7 * 4 + 5 * 4;
+inline constexpr uint64_t kMeshBytesPerVertex = 3 * 4 + 3 * 2 + 3 * 2;
+inline constexpr uint64_t kMeshBytesPerTriangle = 3 * 4 + 4;
+inline constexpr uint64_t kGridFixedBytes = 2 * 4;
+inline constexpr uint64_t kGridBytesPerPoint = 3 * 4 + 3 * 2;
+inline constexpr uint64_t kLumiFixedBytes = 3 * 4 + 4 * 1 + 2 * 4 + 4 * 2 + 4;
+// Version 2 tail: yaw, roll, pan and tilt range, plane and gamma counts, SH count.
+inline constexpr uint64_t kLumiTailFixedBytes = 4 * 4 + 2 * 4 + 4;
+inline constexpr uint64_t kScaleBytes = 8;  // i32 mantissa, i32 exponent
+inline constexpr uint64_t kDirectBytesPerReceiver = 3 * 2 + 4;
+inline constexpr uint64_t kBasisBytesPerValue = 2;
+
+constexpr uint64_t MetaBytes(uint64_t name_bytes, uint64_t grids) {
+  return kStringBytes + name_bytes + kMetaFixedBytes + 4 * grids;
+}
+inline constexpr uint64_t kMaxMetaBytes = MetaBytes(kMaxNameBytes, kMaxGrids);
+constexpr uint64_t MeshBytesWithoutNames(uint64_t vertices, uint64_t triangles) {
+  return kMeshBytesPerVertex * vertices + kMeshBytesPerTriangle * triangles;
+}
+constexpr uint64_t GridBytes(uint64_t name_bytes, uint64_t points) {
+  return kStringBytes + name_bytes + kGridFixedBytes + kGridBytesPerPoint * points;
+}
+constexpr uint64_t LumiBytes(uint64_t name_bytes, uint64_t lid_samples) {
+  return kStringBytes + name_bytes + kLumiFixedBytes + 8 * lid_samples;
+}
+constexpr uint64_t LumiTailBytes(uint64_t planes, uint64_t gammas, uint64_t sh_terms) {
+  return kLumiTailFixedBytes + 4 * (planes + gammas) + 8 * planes * gammas + 8 * sh_terms;
+}
+inline constexpr uint64_t kMaxLumiTailBytes =
+    kLumiTailFixedBytes + 4 * (kMaxLidPlanes + kMaxLidGammas) + 8 * kMaxLidTableValues +
+    8 * static_cast<uint64_t>(ShTermCount(kMaxShDegree));
+constexpr uint64_t DirectBytes(uint64_t receivers) {
+  return kScaleBytes + kDirectBytesPerReceiver * receivers;
+}
+constexpr uint64_t BasisBytes(uint64_t terms, uint64_t receivers) {
+  return kScaleBytes * 3 * terms + kBasisBytesPerValue * 3 * terms * receivers;
+}
+// HIER: count, then surface, parent, first child, child count, corner count,
+// corners, area, leaf triangle per node. LINK: count, then p, q, f_pq, f_qp,
+// g_pq, g_qp per link.
+inline constexpr uint64_t kCountBytes = 4;
+inline constexpr uint64_t kHierBytesPerNode = 2 + 4 + 4 + 1 + 1 + 4 * kBakeMaxNodeCorners + 8 + 4;
+inline constexpr uint64_t kLinkBytesPerLink = 4 * 4 + 4 * 4;
+constexpr uint64_t HierBytes(uint64_t nodes) { return kCountBytes + kHierBytesPerNode * nodes; }
+constexpr uint64_t LinkBytes(uint64_t links) { return kCountBytes + kLinkBytesPerLink * links; }
+
+}  // namespace relight::bake_format

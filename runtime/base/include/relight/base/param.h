@@ -1,0 +1,34 @@
+// Fixture parameters as every input produces them: a timestamped change of
+// one parameter of one fixture, in the runtime's fixed formats. Below hal,
+// the control stage and the engine alike; knows nothing of radiosity.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace relight {
+
+enum class Param : uint8_t { kPan, kTilt, kDimmer, kRed, kGreen, kBlue, kRoll };
+inline constexpr int kParamCount = 7;
+// pan, tilt and roll carry degrees; the rest Q1.15 levels.
+inline constexpr bool IsAngle(Param param) {
+  return param == Param::kPan || param == Param::kTilt || param == Param::kRoll;
+}
+
+inline constexpr size_t kMaxFixtureName = 47;
+
+struct ParamChange {
+  int64_t time_us = 0;  // when the change applies, microseconds on the source's clock
+  char fixture[kMaxFixtureName + 1] = {};
+  Param param = Param::kDimmer;
+  // pan, tilt, roll: degrees in Q16.16 (65536 = 1 degree);
+  // dimmer, red, green, blue: Q1.15 level, 0 .. 32767 = 0 .. 1.
+  int32_t value = 0;
+};
+
+const char* ParamName(Param param);
+// "pan", "tilt", "roll", "dimmer", "r", "g", "b" -> Param; false for anything else.
+bool ParamFromName(const std::string& name, Param* out);
+
+}  // namespace relight

@@ -1,0 +1,333 @@
+#include "daemon.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdint>
+#include <ctime>
+
+#include "relight/base/clock.h"
+#include "relight/base/log.h"
+#include "relight/hal/replay_source.h"
+#include "relight/hal/source_factory.h"
+#include "set_args.h"
+
+namespace relight::daemon {
+
+
+namespace {
+
+constexpr size_t kPollBatch = 256;
+
+// The holding registers that show the engine's state, for the servers' start.
+std::vector<uint16_t> RegistersFor(const Engine& engine, const hal::RegisterMap& map) {
+  std::vector<uint16_t> regs(static_cast<size_t>(map.holding_count()), 0);
+  for (int f = 0; f < map.fixture_count(); ++f) {
+    const int lum = engine.FindLuminaire(map.fixture(f).name);
+    if (lum < 0) continue;
+    map.Encode(engine.state(lum), f, &regs[static_cast<size_t>(map.fixture(f).modbus_base)]);
+  }
+  return regs;
+}
+
+// The bake's luminaires as the patch sees them: names and console ranges.
+std::vector<hal::LuminaireConsole> Luminaires(const Engine& engine) {
+  std::vector<hal::LuminaireConsole> out;
+  for (const BakeLuminaire& lum : engine.bake().luminaires) out.push_back({lum.name, lum.pan_range, lum.tilt_range});
+  return out;
+}
+
+// Sleeps until `deadline_us` on CLOCK_MONOTONIC, or until a signal.
+void SleepUntil(int64_t deadline_us) {
+  timespec ts{};
+  ts.tv_sec = static_cast<time_t>(deadline_us / 1000000);
+  ts.tv_nsec = static_cast<long>((deadline_us % 1000000) * 1000);
+  clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr);
+}
+
+}  // namespace
+
+struct Daemon::Impl {
+  DaemonConfig config;
+  Engine engine;
+  hal::Patch patch;
+  hal::RegisterMap map;
+  std::unique_ptr<control::Fader> fader;
+  std::vector<std::unique_ptr<hal::InputSource>> patch_sources;  // replaced on reload
+  std::unique_ptr<hal::ReplaySource> replay;
+  std::vector<std::unique_ptr<hal::InputSource>> extra_sources;
+  std::vector<std::unique_ptr<FrameSink>> sinks;
+  cli::FramePipeline pipeline;
+  std::function<void(const FrameInfo&)> observer;
+  DaemonStats stats;
+  int64_t period_us = 33333;
+  std::vector<ParamChange> batch = std::vector<ParamChange>(kPollBatch);
+  std::vector<ParamChange> outputs;
+  int unknown_fixture_warnings = 0;
+
+  std::vector<hal::InputSource*> AllSources() const {
+    std::vector<hal::InputSource*> all;
+    for (const auto& s : patch_sources) all.push_back(s.get());
+    if (replay) all.push_back(replay.get());
+    for (const auto& s : extra_sources) all.push_back(s.get());
+    return all;
+  }
+
+  // Builds the map, fader and live sources of `p` (resolved). Does not start them.
+  Status Adopt(hal::Patch p) {
+    hal::RegisterMap new_map;
+    RELIGHT_RETURN_IF_ERROR(hal::RegisterMap::Build(p.fixtures, &new_map));
+    hal::Patch live = p;
+    live.replay_script.clear();  // the replay belongs to the daemon, not to reloads
+    std::vector<std::unique_ptr<hal::InputSource>> sources;
+    RELIGHT_RETURN_IF_ERROR(hal::MakeInputSources(live, new_map, RegistersFor(engine, new_map), "", &sources));
+    auto new_fader = std::make_unique<control::Fader>(p.fixtures);
+    for (int f = 0; f < new_fader->slot_count(); ++f) {
+      new_fader->Reset(f, engine.state(engine.FindLuminaire(p.fixtures[static_cast<size_t>(f)].name)));
+    }
+    if (fader) new_fader->CopyRampsFrom(*fader);
+    patch = std::move(p);
+    map = std::move(new_map);
+    fader = std::move(new_fader);
+    patch_sources = std::move(sources);
+    outputs.assign(static_cast<size_t>(fader->slot_count()) * kParamCount, ParamChange());
+    return Status::Ok();
+  }
+
+  static Status StartAll(const std::vector<hal::InputSource*>& sources) {
+    for (size_t i = 0; i < sources.size(); ++i) {
+      if (Status st = sources[i]->Start(); !st.ok()) {
+        for (size_t k = 0; k < i; ++k) sources[k]->Stop();
+        return Status(st.code(), std::string("input ") + sources[i]->Name() + ": " + st.message());
+      }
+    }
+    return Status::Ok();
+  }
+
+  Status LoadResolved(hal::Patch* out) {
+    hal::Patch p;
+    if (!config.patch_path.empty()) RELIGHT_RETURN_IF_ERROR(hal::LoadPatch(config.patch_path, &p));
+    if (config.modbus_port >= 0) {
+      p.modbus_tcp.enabled = true;
+      p.modbus_tcp.port = config.modbus_port;
+    }
+    RELIGHT_RETURN_IF_ERROR(hal::ResolvePatch(Luminaires(engine), &p));
+    *out = std::move(p);
+    return Status::Ok();
+  }
+
+  void Reload() {
+    ++stats.reloads;
+    hal::Patch p;
+    if (Status st = LoadResolved(&p); !st.ok()) {
+      ++stats.reload_failures;
+      Log(LogLevel::kError, "relightd: patch reload failed, keeping the old patch: %s", st.ToString().c_str());
+      return;
+    }
+    hal::Patch old = patch;
+    for (auto& s : patch_sources) s->Stop();  // frees ports and devices for the new sources
+    std::vector<hal::InputSource*> started;
+    Status st = Adopt(std::move(p));
+    if (st.ok()) {
+      for (auto& s : patch_sources) started.push_back(s.get());
+      st = StartAll(started);
+    }
+    if (st.ok()) {
+      Log(LogLevel::kInfo, "relightd: patch %s reloaded (%d fixtures, %zu live inputs)", config.patch_path.c_str(),
+          map.fixture_count(), patch_sources.size());
+      return;
+    }
+    ++stats.reload_failures;
+    Log(LogLevel::kError, "relightd: new patch cannot start (%s); going back to the old one", st.ToString().c_str());
+    started.clear();
+    if (Status back = Adopt(std::move(old)); back.ok()) {
+      for (auto& s : patch_sources) started.push_back(s.get());
+      back = StartAll(started);
+      if (!back.ok()) Log(LogLevel::kError, "relightd: the old patch cannot restart either: %s", back.ToString().c_str());
+    }
+  }
+
+  // Polls the sources (only the live ones if `live_only`), handing their
+  // changes to the fader at daemon time `time_us`; returns the newest
+  // arrival among live changes (0: none).
+  int64_t PollInputs(int64_t time_us, bool live_only) {
+    int64_t newest_arrival = 0;
+    for (hal::InputSource* source : AllSources()) {
+      if (live_only && source->clock() != hal::SourceClock::kMonotonic) continue;
+      const int64_t now = source->clock() == hal::SourceClock::kScript ? time_us : MonotonicUs();
+      size_t n;
+      do {
+        n = source->Poll(now, batch.data(), batch.size());
+        for (size_t i = 0; i < n; ++i) {
+          const ParamChange& c = batch[i];
+          if (!fader->SetTarget(c, time_us)) {
+            if (unknown_fixture_warnings++ < 5) {
+              Log(LogLevel::kWarning, "relightd: %s: no fixture '%s' in the bake; change ignored", source->Name(),
+                  c.fixture);
+            }
+            continue;
+          }
+          if (source->clock() == hal::SourceClock::kMonotonic && c.time_us > newest_arrival) newest_arrival = c.time_us;
+        }
+      } while (n == batch.size());
+    }
+    return newest_arrival;
+  }
+
+  // Applies what the fader moved; returns how many parameters changed.
+  size_t ApplyFader(int64_t time_us) {
+    const size_t n = fader->Step(time_us, outputs.data());
+    for (size_t i = 0; i < n; ++i) {
+      std::string error;
+      if (!cli::ApplyChange(engine, outputs[i], &error)) {
+        Log(LogLevel::kError, "relightd: %s", error.c_str());
+      }
+    }
+    stats.changes_applied += static_cast<int64_t>(n);
+    return n;
+  }
+
+  // Real time: waits for the tick due at `deadline_us`, meanwhile polling the
+  // live sources every millisecond. Returns true to render early: a live
+  // change came and the last render started at least one period ago.
+  bool WaitForTick(int64_t t0_us, int64_t deadline_us, int64_t last_render_us, const std::atomic<bool>& stop,
+                   const std::atomic<bool>& reload, int64_t* pending_arrival_us) {
+    for (;;) {
+      const int64_t now = MonotonicUs();
+      if (stop.load() || reload.load() || now >= deadline_us) return false;
+      const int64_t arrival = PollInputs(now - t0_us, true);
+      if (arrival > *pending_arrival_us) *pending_arrival_us = arrival;
+      if (*pending_arrival_us > 0 && now >= last_render_us + period_us) return true;
+      SleepUntil(std::min(deadline_us, now + 1000));
+    }
+  }
+
+  // Writes the frame everywhere. A sink failing on the first frame is an
+  // error; later the sink is dropped with a log line and the rest go on.
+  Status WriteSinks(int64_t frame) {
+    for (size_t i = 0; i < sinks.size();) {
+      const Status st = sinks[i]->Write(pipeline.pixels(), pipeline.width(), pipeline.height(), frame);
+      if (!st.ok()) {
+        if (frame == 0) return st;
+        Log(LogLevel::kError, "relightd: %s: %s; no more frames go there", sinks[i]->Describe().c_str(),
+            st.ToString().c_str());
+        sinks.erase(sinks.begin() + static_cast<long>(i));
+        continue;
+      }
+      ++i;
+    }
+    return Status::Ok();
+  }
+};
+
+Daemon::Daemon() : impl_(std::make_unique<Impl>()) {}
+Daemon::~Daemon() {
+  for (hal::InputSource* s : impl_->AllSources()) s->Stop();
+}
+
+Status Daemon::Open(const DaemonConfig& config) {
+  Impl& m = *impl_;
+  m.config = config;
+  if (!(config.fps >= 0.1 && config.fps <= 1000)) {
+    return Status(StatusCode::kInvalidArgument, "frame rate must be in 0.1..1000 frames/s");
+  }
+  m.period_us = static_cast<int64_t>(1e6 / config.fps + 0.5);
+  RELIGHT_RETURN_IF_ERROR(m.engine.Open(config.bake_path));
+  hal::Patch p;
+  RELIGHT_RETURN_IF_ERROR(m.LoadResolved(&p));
+  const std::string script = config.replay_path.empty() ? p.replay_script : config.replay_path;
+  RELIGHT_RETURN_IF_ERROR(m.Adopt(std::move(p)));
+  if (!script.empty()) m.replay = std::make_unique<hal::ReplaySource>(script);
+  if (config.exit_when_replay_done && !m.replay) {
+    return Status(StatusCode::kInvalidArgument, "--exit-when-replay-done needs a replay script (--replay or [replay])");
+  }
+  CameraView view = cli::CameraFromBake(m.engine.bake().camera);
+  for (int i = 0; i < 3; ++i) {
+    if (config.camera_pos) view.position[i] = (*config.camera_pos)[static_cast<size_t>(i)];
+    if (config.camera_target) view.target[i] = (*config.camera_target)[static_cast<size_t>(i)];
+  }
+  if (config.fov_y_deg > 0) view.fov_y_deg = config.fov_y_deg;
+  return m.pipeline.Init(m.engine, config.width, config.height, view, config.white_q12);
+}
+
+void Daemon::AddSink(std::unique_ptr<FrameSink> sink) { impl_->sinks.push_back(std::move(sink)); }
+void Daemon::AddSource(std::unique_ptr<hal::InputSource> source) { impl_->extra_sources.push_back(std::move(source)); }
+void Daemon::SetFrameObserver(std::function<void(const FrameInfo&)> observer) { impl_->observer = std::move(observer); }
+
+Status Daemon::Start() { return Impl::StartAll(impl_->AllSources()); }
+
+Status Daemon::Run(const std::atomic<bool>& stop, std::atomic<bool>& reload) {
+  Impl& m = *impl_;
+  const int64_t t0_us = MonotonicUs();
+  int64_t tick = 0;                         // the next tick: script time tick * period
+  int64_t last_render_us = INT64_MIN / 2;   // MonotonicUs() when the last render started
+  int64_t pending_arrival_us = 0;           // newest live change not yet shown
+  bool have_frame = false;
+  for (int64_t frame = 0; !stop.load(); ++frame) {
+    bool early = false;
+    if (!m.config.script_time) {
+      early = m.WaitForTick(t0_us, t0_us + tick * m.period_us, last_render_us, stop, reload, &pending_arrival_us);
+      if (stop.load()) break;
+      if (!early && MonotonicUs() < t0_us + tick * m.period_us) {
+        --frame;  // woken for a reload only
+        if (reload.exchange(false)) m.Reload();
+        continue;
+      }
+    }
+    if (reload.exchange(false)) m.Reload();
+    // Daemon time: the tick's script time, or now for an early frame.
+    const int64_t time_us = early ? MonotonicUs() - t0_us : tick * m.period_us;
+    if (!early) {
+      const int64_t arrival = m.PollInputs(time_us, false);
+      if (arrival > pending_arrival_us) pending_arrival_us = arrival;
+    }
+    // Nothing moved since the last frame: send it again instead of redrawing it.
+    const bool render = m.ApplyFader(time_us) > 0 || !have_frame;
+    int64_t render_us = 0;
+    if (render) {
+      last_render_us = MonotonicUs();
+      RELIGHT_RETURN_IF_ERROR(m.pipeline.Render(m.engine));
+      render_us = MonotonicUs() - last_render_us;
+      have_frame = true;
+      ++m.stats.renders;
+    }
+    RELIGHT_RETURN_IF_ERROR(m.WriteSinks(frame));
+    const int64_t out_us = MonotonicUs();
+
+    const int64_t shown_arrival_us = render ? pending_arrival_us : 0;
+    if (shown_arrival_us > 0) {
+      const int64_t latency = out_us - shown_arrival_us;
+      m.stats.last_latency_us = static_cast<uint32_t>(latency < 0 ? 0 : latency > 0xFFFFFFFF ? 0xFFFFFFFF : latency);
+      pending_arrival_us = 0;
+    }
+    for (hal::InputSource* s : m.AllSources()) s->OnFrameOut(static_cast<uint32_t>(frame + 1), m.stats.last_latency_us);
+    ++m.stats.frames;
+    if (early) ++m.stats.early_frames;
+    m.stats.render_us_total += render_us;
+    if (render_us > m.stats.render_us_max) m.stats.render_us_max = render_us;
+    if (m.observer) m.observer({frame, early ? -1 : tick, render_us, out_us, shown_arrival_us});
+
+    if (m.config.max_frames > 0 && frame + 1 >= m.config.max_frames) break;
+    if (!early && m.config.exit_when_replay_done && m.replay->Finished() && m.fader->Idle(time_us)) break;
+    if (early) continue;  // the tick is still to come
+    ++tick;
+    if (!m.config.script_time) {
+      // Behind schedule: skip to the next tick still ahead rather than queue frames.
+      const int64_t due = (out_us - t0_us) / m.period_us + 1;
+      if (due > tick) {
+        m.stats.ticks_skipped += due - tick;
+        tick = due;
+      }
+    }
+  }
+  for (const auto& sink : m.sinks) RELIGHT_RETURN_IF_ERROR(sink->Finish());
+  return Status::Ok();
+}
+
+Engine& Daemon::engine() { return impl_->engine; }
+const hal::Patch& Daemon::patch() const { return impl_->patch; }
+const hal::RegisterMap& Daemon::register_map() const { return impl_->map; }
+std::vector<hal::InputSource*> Daemon::sources() const { return impl_->AllSources(); }
+DaemonStats Daemon::stats() const { return impl_->stats; }
+int64_t Daemon::period_us() const { return impl_->period_us; }
+
+}  // namespace relight::daemon

@@ -1,0 +1,115 @@
+// relightd's core: inputs -> fades -> engine -> renderer -> sinks at a
+// steady frame rate. The main (relightd_main.cc) parses the command line and
+// handles signals; tests and the latency benchmark drive this class directly.
+//
+// Each control tick k (period 1/fps): poll every source (replay scripts at
+// script time k/fps, live sources at once), hand the changes to the fader,
+// apply its outputs to the engine, render, write the frame to every sink,
+// then tell every source the frame number and the write-to-frame latency
+// (Modbus status registers). When rendering falls behind, ticks are
+// skipped, not queued. The last state keeps being shown whatever the
+// inputs do.
+//
+// Between ticks the live sources (Modbus, GPIO) are polled every
+// millisecond: a change that arrives when the last render is at least one
+// period old is rendered at once (an early frame) instead of waiting for the
+// tick, so renders stay at most one per period while a lone write is shown
+// within about one render time. A tick where nothing moved sends the last
+// frame again without redrawing it. Replay scripts only act on ticks, so
+// replays give the same frames in real time and in script time.
+//
+// Thread safety: one thread calls everything; stop/reload flags may be set
+// from anywhere (signal handlers).
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "frame_pipeline.h"
+#include "frame_sink.h"
+#include "relight/engine/engine.h"
+#include "relight/control/fader.h"
+#include "relight/hal/input_source.h"
+#include "relight/hal/patch.h"
+#include "relight/hal/register_map.h"
+
+namespace relight::daemon {
+
+struct DaemonConfig {
+  std::string bake_path;
+  std::string patch_path;     // empty: every luminaire with defaults, no live inputs
+  std::string replay_path;    // empty: the patch's [replay] script, if any
+  int modbus_port = -1;       // >= 0: serve Modbus TCP on 127.0.0.1 at this port (0: any) even without [modbus_tcp]
+  int width = 1280, height = 720;
+  double fps = 30;
+  bool script_time = false;   // no waiting: frame k shows script time k/fps (reproducible runs)
+  bool exit_when_replay_done = false;  // after the frame that shows the replay's last change (and its fade)
+  int64_t max_frames = 0;     // 0: no limit
+  // Camera: the bake's, with any of these replacing its part.
+  std::optional<std::array<float, 3>> camera_pos, camera_target;  // metres
+  float fov_y_deg = 0;        // 0: the bake's
+  int32_t white_q12 = 0;      // display white, LightQ12 cd/m^2; 0: the bake's
+};
+
+// What one frame was: for logs, tests and the latency benchmark.
+struct FrameInfo {
+  int64_t frame = 0;          // 0, 1, 2, ...
+  int64_t tick = 0;           // control tick shown (script time = tick / fps); -1: an early frame
+  int64_t render_us = 0;      // engine update + tone map + draw; 0: the last frame sent again
+  int64_t out_us = 0;         // MonotonicUs() when every sink had it
+  int64_t newest_arrival_us = 0;  // arrival of the newest live change it shows (0: none this frame)
+};
+
+struct DaemonStats {
+  int64_t frames = 0;         // written to the sinks
+  int64_t renders = 0;        // drawn (a frame where nothing moved is sent again, not redrawn)
+  int64_t early_frames = 0;   // rendered between ticks for a live change
+  int64_t ticks_skipped = 0;  // render too slow for the frame rate
+  int64_t render_us_total = 0, render_us_max = 0;
+  uint32_t last_latency_us = 0;
+  int64_t changes_applied = 0;
+  int reloads = 0, reload_failures = 0;
+};
+
+class Daemon {
+ public:
+  Daemon();
+  ~Daemon();
+
+  // Opens the bake, reads and resolves the patch, creates its input sources
+  // and the renderer. Errors name the file and what is wrong.
+  Status Open(const DaemonConfig& config);
+  void AddSink(std::unique_ptr<FrameSink> sink);
+  // An extra source (a mock in tests), kept across patch reloads.
+  void AddSource(std::unique_ptr<hal::InputSource> source);
+  // Called after every frame (tests, benchmark).
+  void SetFrameObserver(std::function<void(const FrameInfo&)> observer);
+
+  // Starts every source; the first failure stops the others and is returned
+  // naming the source.
+  Status Start();
+  // Renders until `stop` is set, max_frames are out or (with
+  // exit_when_replay_done) the replay is over. `reload` set: re-read the
+  // patch (on an error the old patch stays). Returns the error that stopped it.
+  Status Run(const std::atomic<bool>& stop, std::atomic<bool>& reload);
+
+  Engine& engine();
+  const hal::Patch& patch() const;
+  const hal::RegisterMap& register_map() const;
+  // Sources from the patch, the replay, then the extra ones.
+  std::vector<hal::InputSource*> sources() const;
+  DaemonStats stats() const;
+  int64_t period_us() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace relight::daemon

@@ -1,0 +1,98 @@
+#include "relight/control/fader.h"
+
+#include <cstring>
+
+namespace relight::control {
+
+int32_t ApplyDimmerCurve(hal::DimmerCurve curve, int32_t level_q15) {
+  const int32_t level = level_q15 < 0 ? 0 : level_q15 > 32767 ? 32767 : level_q15;
+  switch (curve) {
+    case hal::DimmerCurve::kLinear: return level;
+    case hal::DimmerCurve::kSquare:  // out = in^2; the product < 2^30 fits int32
+      return (level * level + 16383) / 32767;
+  }
+  return level;
+}
+
+Fader::Fader(const std::vector<hal::FixturePatch>& fixtures) : slots_(fixtures.size()) {
+  for (size_t i = 0; i < fixtures.size(); ++i) slots_[i].patch = fixtures[i];
+}
+
+void Fader::Reset(int slot, const FixtureState& state) {
+  Slot& s = slots_[static_cast<size_t>(slot)];
+  const int32_t values[kParamCount] = {state.pan_deg.raw(), state.tilt_deg.raw(), state.dimmer.raw(),
+                                       state.rgb[0].raw(),  state.rgb[1].raw(),  state.rgb[2].raw(),
+                                       state.roll_deg.raw()};  // in Param order
+  for (int p = 0; p < kParamCount; ++p) {
+    s.ramps[p] = Ramp();
+    s.ramps[p].from = s.ramps[p].to = s.ramps[p].shown = values[p];
+    s.ramps[p].report = true;
+  }
+}
+
+int32_t Fader::ValueAt(const Ramp& ramp, int64_t now_us) {
+  const int64_t elapsed = now_us - ramp.start_us;
+  if (ramp.duration_us <= 0 || elapsed >= ramp.duration_us) return ramp.to;
+  if (elapsed <= 0) return ramp.from;
+  // |to - from| < 2^32 and elapsed < 2^40 (fade_ms <= 600 s): the product fits int64.
+  const int64_t delta = static_cast<int64_t>(ramp.to) - ramp.from;
+  return static_cast<int32_t>(ramp.from + delta * elapsed / ramp.duration_us);
+}
+
+bool Fader::SetTarget(const ParamChange& change, int64_t now_us) {
+  for (Slot& s : slots_) {
+    if (std::strcmp(s.patch.name.c_str(), change.fixture) != 0) continue;
+    Ramp& r = s.ramps[static_cast<int>(change.param)];
+    r.from = ValueAt(r, now_us);
+    r.to = change.value;
+    r.start_us = now_us;
+    r.duration_us = int64_t{s.patch.fade_ms} * 1000;
+    return true;
+  }
+  return false;
+}
+
+size_t Fader::Step(int64_t now_us, ParamChange* out) {
+  size_t n = 0;
+  for (Slot& s : slots_) {
+    for (int p = 0; p < kParamCount; ++p) {
+      Ramp& r = s.ramps[p];
+      int32_t value = ValueAt(r, now_us);
+      if (static_cast<Param>(p) == Param::kDimmer) value = ApplyDimmerCurve(s.patch.dimmer_curve, value);
+      if (value == r.shown && !r.report) continue;
+      r.shown = value;
+      r.report = false;
+      ParamChange& c = out[n++];
+      c = ParamChange();
+      c.time_us = now_us;
+      const size_t len = s.patch.name.size() < kMaxFixtureName ? s.patch.name.size() : kMaxFixtureName;
+      std::memcpy(c.fixture, s.patch.name.data(), len);
+      c.param = static_cast<Param>(p);
+      c.value = value;
+    }
+  }
+  return n;
+}
+
+void Fader::CopyRampsFrom(const Fader& old) {
+  for (Slot& s : slots_) {
+    for (const Slot& o : old.slots_) {
+      if (o.patch.name != s.patch.name) continue;
+      for (int p = 0; p < kParamCount; ++p) {
+        s.ramps[p] = o.ramps[p];
+        s.ramps[p].report = true;
+      }
+    }
+  }
+}
+
+bool Fader::Idle(int64_t now_us) const {
+  for (const Slot& s : slots_) {
+    for (const Ramp& r : s.ramps) {
+      if (r.duration_us > 0 && now_us - r.start_us < r.duration_us) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace relight::control

@@ -1,0 +1,126 @@
+// The run-time engine: fixture state -> per-term weights -> fixed-point
+// recombination -> per-vertex luminance (and grid illuminance).
+//
+//   Engine engine;
+//   Status st = engine.Open("living_room.rlb");   // the only allocation
+//   engine.SetPanTilt(0, Q16_16::FromInt(30), Q16_16::FromInt(45));
+//   engine.Update();                               // integer-only, no heap
+//   const int32_t* rgb = engine.vertex_luminance(); // LightQ12 cd/m^2, 3 per vertex
+//
+// Caching: each luminaire keeps its own un-dimmed, white-light result
+// (direct + indirect, per channel). A pan/tilt change recomputes only that
+// luminaire's cache (its SH terms and direct term); a dimmer or colour change
+// re-sums the caches, O(vertices x luminaires), no SH term touched.
+//
+// Thread safety: none; one thread drives an Engine. Errors are Status values;
+// no call throws.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "relight/bake/bake.h"
+#include "relight/base/fixed.h"
+#include "relight/base/fixture_state.h"
+#include "relight/base/status.h"
+#include "relight/engine/surface_emitter.h"
+
+namespace relight {
+
+class Engine {
+ public:
+  Engine();
+  ~Engine();
+  Engine(const Engine&) = delete;
+  Engine& operator=(const Engine&) = delete;
+
+  // Reads and validates the bake, sizes every buffer, sets every fixture to
+  // the bake's defaults and computes the first result. Returns the codes of
+  // ReadBake(). On error the engine stays closed (or keeps its previous bake).
+  Status Open(const std::string& bake_path);
+  Status Open(Bake bake);
+  bool is_open() const;
+
+  const Bake& bake() const;
+  int luminaire_count() const;
+  // Index of the luminaire called `name`, or -1.
+  int FindLuminaire(const std::string& name) const;
+
+  // Setters validate and store; nothing is computed until Update().
+  // kInvalidArgument for a bad index; values are clamped to their documented
+  // range (dimmer and colour to [0, 1]); angles wrap.
+  Status SetPanTilt(int luminaire, Q16_16 pan_deg, Q16_16 tilt_deg);
+  Status SetDimmer(int luminaire, Q1_15 level);
+  Status SetColour(int luminaire, Q1_15 r, Q1_15 g, Q1_15 b);
+  // The fixture turned about its beam axis (bake.h "fixture frame"); wraps.
+  Status SetRoll(int luminaire, Q16_16 roll_deg);
+  // Console-style 16-bit pan and tilt (coarse << 8 | fine), spread over the
+  // luminaire's pan and tilt ranges (bake.h), 32768 = home (0 degrees).
+  Status SetPanTilt16(int luminaire, uint16_t pan, uint16_t tilt);
+  // Aims the beam at a world point (Q16.16 metres; Dobashi 4.2 with a point
+  // picked in the rendered view, relight/pick.h): of the pan/tilt pairs that
+  // reach it, the one inside the luminaire's console ranges nearest its
+  // current aim. kInvalidArgument for a bad index or the luminaire's own
+  // position, kOutOfRange when the ranges cannot reach the point.
+  Status AimAt(int luminaire, const int32_t target_q16[3]);
+
+  // Beam editing (Dobashi 4.1) of an axisymmetric LID, sampled at M+1 angles
+  // gamma_k = 180 k / M (bake.h). Moving sample k (a control point, as in the
+  // paper's Eq. 21) updates the Legendre weights by its increment alone and
+  // the exact direct term reads the new sample; the luminaire is rebuilt at
+  // the next Update(). No allocation. kInvalidArgument for a bad index,
+  // kOutOfRange for candela outside [0, 2^24), kUnsupported for a LID with
+  // C planes (its SH coefficients come from the bake).
+  Status SetLidSample(int luminaire, int k, Q48_16 candela);
+  // The LID becomes the polyline through `count` control points (gamma from
+  // 0, strictly increasing, at most 180; 0 past the last): every sample that
+  // changes is one Eq. 21 update.
+  Status SetLidControlPoints(int luminaire, const Q16_16* gamma_deg, const Q48_16* candela,
+                             int count);
+  // The current samples (Q48.16 cd) and their count, or nullptr.
+  const int64_t* lid_samples(int luminaire, int* count) const;
+  FixtureState state(int luminaire) const;
+
+  // Run-time light sources on surfaces (relight/surface_emitter.h; Chandran &
+  // Srivastava's fractional emissivity), in slots 0 .. kMaxSurfaceEmitters-1.
+  // SetSurfaceEmitter places or moves one and sets its luminance (LightQ12
+  // cd/m^2 per channel): it clips the polygon against its surface's quadtree
+  // now and re-solves radiosity over the bake's links at the next Update()
+  // (the only costly step). Its light is added to vertex_luminance(), not to
+  // the grids (the bake has no links to grid points). Returns kUnsupported
+  // (bake without a hierarchy), kNotFound (no such surface), kInvalidArgument
+  // (slot, negative luminance, a corner off the surface's plane, a polygon
+  // not convex or not on the surface); on error nothing changes.
+  Status SetSurfaceEmitter(int slot, const SurfaceEmitterShape& shape, const LightQ12 luminance[3]);
+  // A dimmer or colour change: rescales the solved light, no clip or solve.
+  // Both return kUnsupported (no hierarchy) or kInvalidArgument (slot; negative
+  // luminance). Removing an empty slot is not an error.
+  Status SetSurfaceEmitterLuminance(int slot, const LightQ12 luminance[3]);
+  Status RemoveSurfaceEmitter(int slot);
+
+  // Brings the outputs up to date with the state. Integer-only, no allocation.
+  void Update();
+
+  // Per vertex RGB luminance, LightQ12 cd/m^2 (1 LSB = 1/4096 cd/m^2), 3 per vertex.
+  const int32_t* vertex_luminance() const;
+  uint32_t vertex_count() const;
+  // Per point RGB illuminance on calculation grid `grid`, LightQ12 lux,
+  // 3 per point: total and direct only.
+  const int32_t* grid_illuminance(int grid) const;
+  const int32_t* grid_direct_illuminance(int grid) const;
+
+  // Counters for tests and benchmarks: how many luminaire caches were rebuilt
+  // by the last Update(), and how many SH term passes that took.
+  int last_update_luminaires_recombined() const;
+  int last_update_terms_recombined() const;
+  // Emitters solved by the last Update() and the sweeps they took (3 channels a sweep).
+  int last_update_emitters_solved() const;
+  int last_update_emitter_sweeps() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace relight

@@ -1,0 +1,57 @@
+// The renderer: an OSMesa (llvmpipe) context that draws the bake's mesh with
+// per-vertex colours (Gouraud), and an ID pass that tells which triangle each
+// pixel shows (picking, Dobashi 4.2). The GL side of the fence: floats here.
+//
+// Thread safety: one thread per OsMesaFrame; only one may be current at a time.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "relight/bake/bake.h"
+#include "relight/base/status.h"
+
+namespace relight {
+
+struct CameraView {
+  float position[3] = {0, 0, 0};  // metres
+  float target[3] = {0, 0, -1};   // metres
+  float fov_y_deg = 50;
+};
+
+class OsMesaFrame {
+ public:
+  OsMesaFrame();
+  ~OsMesaFrame();
+  OsMesaFrame(const OsMesaFrame&) = delete;
+  OsMesaFrame& operator=(const OsMesaFrame&) = delete;
+
+  // Creates the context and uploads the mesh. kInvalidArgument for a zero or
+  // oversized frame, kInternal if OSMesa refuses a context.
+  Status Init(int width, int height, const BakeMesh& mesh);
+  void SetCamera(const CameraView& camera);
+
+  // Draws with 3 bytes of sRGB colour per vertex; out: width*height*3 bytes,
+  // top row first.
+  Status Draw(const uint8_t* vertex_rgb8, uint8_t* out_rgb8);
+  // Triangle index per pixel (top row first), 0xFFFFFFFF where nothing is drawn.
+  Status DrawTriangleIds(uint32_t* out_ids);
+  // World point (metres) under pixel (x, y), from the depth buffer of the last
+  // draw; kNotFound where the pixel shows background.
+  Status UnprojectPixel(int x, int y, float out_world[3]);
+
+  int width() const;
+  int height() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// 8-bit RGB PNG files. Returns kIoError with the path and libpng's reason.
+Status WritePngRgb8(const std::string& path, const uint8_t* rgb, int width, int height);
+Status ReadPngRgb8(const std::string& path, std::vector<uint8_t>* rgb, int* width, int* height);
+
+}  // namespace relight

@@ -1,0 +1,353 @@
+// OSMesa (Mesa llvmpipe) renderer. The legacy fixed-function pipeline is all
+// we need: vertex colours are already tone-mapped sRGB, so lighting is off and
+// GL does no gamma work; GL_SMOOTH gives Gouraud shading.
+//
+// llvmpipe rasterises on LP_NUM_THREADS threads (default: one per CPU). We
+// leave the environment alone; set it outside the process to share cores.
+#define GL_GLEXT_PROTOTYPES 1
+#include "relight/render/osmesa_frame.h"
+
+#include <GL/osmesa.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+#include "camera.h"
+
+namespace relight {
+namespace {
+
+constexpr int kMaxSide = 16384;  // llvmpipe's largest framebuffer side
+// The ID pass stores triangle index + 1 in 24 bits of RGB; 0 is background.
+constexpr uint32_t kMaxTriangles = 0xFFFFFEu;
+constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
+constexpr float kBackgroundGrey = 32.0f / 255.0f;  // dark grey
+
+const char* GlErrorName(GLenum e) {
+  switch (e) {
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    default: return "GL error";
+  }
+}
+
+Status CheckGl(const char* where) {
+  const GLenum e = glGetError();
+  if (e == GL_NO_ERROR) return Status::Ok();
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  return Status(StatusCode::kInternal, StrFormat("render: %s: %s (0x%x)", where, GlErrorName(e), e));
+}
+
+GLsizeiptr Bytes(size_t count, size_t elem_size) { return static_cast<GLsizeiptr>(count * elem_size); }
+
+}  // namespace
+
+struct OsMesaFrame::Impl {
+  OSMesaContext ctx = nullptr;
+  int width = 0;
+  int height = 0;
+  std::vector<GLubyte> color_rgba;  // OSMesa's colour buffer, bottom row first
+
+  uint32_t vertex_count = 0;
+  uint32_t triangle_count = 0;
+  render::SceneSphere scene;
+  // Buffer objects: shared-vertex mesh for the colour pass, un-shared
+  // vertices (3 per triangle, flat ID colour) for the ID pass.
+  GLuint position_vbo = 0;
+  GLuint color_vbo = 0;
+  GLuint index_vbo = 0;
+  GLuint id_position_vbo = 0;
+  GLuint id_color_vbo = 0;
+
+  CameraView view;
+  render::CameraFrame camera;
+  render::CameraFrame drawn_camera;  // the camera of the last draw (for unprojection)
+  bool has_drawn = false;
+
+  ~Impl() { Release(); }
+
+  void Release() {
+    if (ctx != nullptr) {
+      // Buffer objects die with the context; only one context lives at a time.
+      OSMesaDestroyContext(ctx);
+      ctx = nullptr;
+    }
+    position_vbo = color_vbo = index_vbo = id_position_vbo = id_color_vbo = 0;
+    width = height = 0;
+    has_drawn = false;
+  }
+
+  Status MakeCurrent() {
+    if (ctx == nullptr) return Status(StatusCode::kInvalidArgument, "render: frame not initialised");
+    if (OSMesaGetCurrentContext() == ctx) return Status::Ok();
+    if (!OSMesaMakeCurrent(ctx, color_rgba.data(), GL_UNSIGNED_BYTE, width, height)) {
+      return Status(StatusCode::kInternal, "render: OSMesaMakeCurrent failed");
+    }
+    return Status::Ok();
+  }
+
+  void UpdateCamera() {
+    camera = render::MakeCameraFrame(view, static_cast<double>(width) / height, scene);
+  }
+
+  void LoadMatrices() {
+    float m[16];
+    render::ProjectionMatrix(camera, m);
+    glMatrixMode(GL_PROJECTION);
+    glLoadMatrixf(m);
+    render::ViewMatrix(camera, m);
+    glMatrixMode(GL_MODELVIEW);
+    glLoadMatrixf(m);
+  }
+
+  Status Upload(const BakeMesh& mesh);
+  Status Finish(const char* pass);
+};
+
+Status OsMesaFrame::Impl::Upload(const BakeMesh& mesh) {
+  // Q16.16 metres to float, once.
+  std::vector<GLfloat> pos(mesh.positions.size());
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    const double v = mesh.positions[i] / 65536.0;
+    pos[i] = static_cast<GLfloat>(v);
+    const size_t axis = i % 3;
+    if (i < 3 || v < lo[axis]) lo[axis] = v;
+    if (i < 3 || v > hi[axis]) hi[axis] = v;
+  }
+  double r2 = 0;
+  for (int a = 0; a < 3; ++a) {
+    scene.centre_m[a] = 0.5 * (lo[a] + hi[a]);
+    r2 += 0.25 * (hi[a] - lo[a]) * (hi[a] - lo[a]);
+  }
+  scene.radius_m = std::sqrt(r2);
+
+  std::vector<GLfloat> id_pos(static_cast<size_t>(triangle_count) * 9);
+  std::vector<GLubyte> id_rgb(static_cast<size_t>(triangle_count) * 9);
+  for (uint32_t t = 0; t < triangle_count; ++t) {
+    const uint32_t code = t + 1;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = mesh.triangles[static_cast<size_t>(t) * 3 + k];
+      const size_t o = (static_cast<size_t>(t) * 3 + k) * 3;
+      for (int a = 0; a < 3; ++a) id_pos[o + a] = pos[static_cast<size_t>(v) * 3 + a];
+      id_rgb[o + 0] = static_cast<GLubyte>(code & 0xFF);
+      id_rgb[o + 1] = static_cast<GLubyte>((code >> 8) & 0xFF);
+      id_rgb[o + 2] = static_cast<GLubyte>((code >> 16) & 0xFF);
+    }
+  }
+
+  GLuint ids[5];
+  glGenBuffers(5, ids);
+  position_vbo = ids[0];
+  color_vbo = ids[1];
+  index_vbo = ids[2];
+  id_position_vbo = ids[3];
+  id_color_vbo = ids[4];
+  glBindBuffer(GL_ARRAY_BUFFER, position_vbo);
+  glBufferData(GL_ARRAY_BUFFER, Bytes(pos.size(), sizeof(GLfloat)), pos.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, color_vbo);
+  glBufferData(GL_ARRAY_BUFFER, Bytes(vertex_count, 3), nullptr, GL_STREAM_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, id_position_vbo);
+  glBufferData(GL_ARRAY_BUFFER, Bytes(id_pos.size(), sizeof(GLfloat)), id_pos.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, id_color_vbo);
+  glBufferData(GL_ARRAY_BUFFER, Bytes(id_rgb.size(), 1), id_rgb.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, index_vbo);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, Bytes(mesh.triangles.size(), sizeof(GLuint)),
+               mesh.triangles.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+  return CheckGl("uploading the mesh");
+}
+
+// Waits for llvmpipe, which also copies the frame into color_rgba.
+Status OsMesaFrame::Impl::Finish(const char* pass) {
+  glFinish();
+  RELIGHT_RETURN_IF_ERROR(CheckGl(pass));
+  drawn_camera = camera;
+  has_drawn = true;
+  return Status::Ok();
+}
+
+OsMesaFrame::OsMesaFrame() : impl_(new Impl) {}
+OsMesaFrame::~OsMesaFrame() = default;
+
+int OsMesaFrame::width() const { return impl_->width; }
+int OsMesaFrame::height() const { return impl_->height; }
+
+Status OsMesaFrame::Init(int width, int height, const BakeMesh& mesh) {
+  Impl& m = *impl_;
+  // A new context only after the old one is gone (PITFALLS: OSMesa).
+  m.Release();
+  if (width < 1 || height < 1 || width > kMaxSide || height > kMaxSide) {
+    return Status(StatusCode::kInvalidArgument,
+                  StrFormat("render: frame size %dx%d outside 1..%d", width, height, kMaxSide));
+  }
+  if (mesh.positions.size() % 3 != 0 || mesh.triangles.size() % 3 != 0) {
+    return Status(StatusCode::kInvalidArgument, "render: mesh arrays are not whole xyz / triangles");
+  }
+  if (mesh.triangle_count() > kMaxTriangles) {
+    return Status(StatusCode::kInvalidArgument,
+                  StrFormat("render: %u triangles exceed the ID pass limit %u", mesh.triangle_count(),
+                            kMaxTriangles));
+  }
+  const uint32_t vertex_count = mesh.vertex_count();
+  for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+    if (mesh.triangles[i] >= vertex_count) {
+      return Status(StatusCode::kInvalidArgument,
+                    StrFormat("render: triangle %zu uses vertex %u of %u", i / 3, mesh.triangles[i],
+                              vertex_count));
+    }
+  }
+
+  const int attribs[] = {OSMESA_FORMAT,
+                         OSMESA_RGBA,
+                         OSMESA_DEPTH_BITS,
+                         24,
+                         OSMESA_STENCIL_BITS,
+                         0,
+                         OSMESA_ACCUM_BITS,
+                         0,
+                         OSMESA_PROFILE,
+                         OSMESA_COMPAT_PROFILE,
+                         OSMESA_CONTEXT_MAJOR_VERSION,
+                         2,
+                         OSMESA_CONTEXT_MINOR_VERSION,
+                         1,
+                         0};
+  m.ctx = OSMesaCreateContextAttribs(attribs, nullptr);
+  if (m.ctx == nullptr) return Status(StatusCode::kInternal, "render: OSMesa refused a GL 2.1 context");
+  m.width = width;
+  m.height = height;
+  m.color_rgba.assign(static_cast<size_t>(width) * height * 4, 0);
+  if (!OSMesaMakeCurrent(m.ctx, m.color_rgba.data(), GL_UNSIGNED_BYTE, width, height)) {
+    m.Release();
+    return Status(StatusCode::kInternal, "render: OSMesaMakeCurrent failed");
+  }
+
+  glViewport(0, 0, width, height);
+  glDisable(GL_LIGHTING);
+  glDisable(GL_CULL_FACE);  // rooms are seen from inside; keep both faces
+  glDisable(GL_DITHER);     // exact colours, and exact IDs in the ID pass
+  glDisable(GL_MULTISAMPLE);
+  glDisable(GL_BLEND);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_COLOR_ARRAY);
+
+  m.vertex_count = vertex_count;
+  m.triangle_count = mesh.triangle_count();
+  Status st = m.Upload(mesh);
+  if (!st.ok()) {
+    m.Release();
+    return st;
+  }
+  m.UpdateCamera();
+  return Status::Ok();
+}
+
+void OsMesaFrame::SetCamera(const CameraView& camera) {
+  impl_->view = camera;
+  if (impl_->ctx != nullptr) impl_->UpdateCamera();
+}
+
+Status OsMesaFrame::Draw(const uint8_t* vertex_rgb8, uint8_t* out_rgb8) {
+  Impl& m = *impl_;
+  if (out_rgb8 == nullptr || (vertex_rgb8 == nullptr && m.vertex_count > 0)) {
+    return Status(StatusCode::kInvalidArgument, "render: Draw: null buffer");
+  }
+  RELIGHT_RETURN_IF_ERROR(m.MakeCurrent());
+  m.LoadMatrices();
+  glShadeModel(GL_SMOOTH);
+  glClearColor(kBackgroundGrey, kBackgroundGrey, kBackgroundGrey, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  if (m.triangle_count > 0) {
+    glBindBuffer(GL_ARRAY_BUFFER, m.color_vbo);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, Bytes(m.vertex_count, 3), vertex_rgb8);
+    glColorPointer(3, GL_UNSIGNED_BYTE, 0, nullptr);
+    glBindBuffer(GL_ARRAY_BUFFER, m.position_vbo);
+    glVertexPointer(3, GL_FLOAT, 0, nullptr);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.index_vbo);
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(m.triangle_count * 3), GL_UNSIGNED_INT, nullptr);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+  }
+  RELIGHT_RETURN_IF_ERROR(m.Finish("Draw"));
+
+  // OSMesa's buffer is bottom-up (OSMESA_Y_UP = 1); the output is top-down.
+  const size_t w = static_cast<size_t>(m.width);
+  for (int y = 0; y < m.height; ++y) {
+    const GLubyte* src = m.color_rgba.data() + static_cast<size_t>(m.height - 1 - y) * w * 4;
+    uint8_t* dst = out_rgb8 + static_cast<size_t>(y) * w * 3;
+    for (size_t x = 0; x < w; ++x) {
+      dst[x * 3 + 0] = src[x * 4 + 0];
+      dst[x * 3 + 1] = src[x * 4 + 1];
+      dst[x * 3 + 2] = src[x * 4 + 2];
+    }
+  }
+  return Status::Ok();
+}
+
+Status OsMesaFrame::DrawTriangleIds(uint32_t* out_ids) {
+  Impl& m = *impl_;
+  if (out_ids == nullptr) return Status(StatusCode::kInvalidArgument, "render: DrawTriangleIds: null buffer");
+  RELIGHT_RETURN_IF_ERROR(m.MakeCurrent());
+  m.LoadMatrices();
+  // Flat shading: each pixel gets exactly its triangle's code, no interpolation.
+  glShadeModel(GL_FLAT);
+  glClearColor(0, 0, 0, 0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  if (m.triangle_count > 0) {
+    glBindBuffer(GL_ARRAY_BUFFER, m.id_color_vbo);
+    glColorPointer(3, GL_UNSIGNED_BYTE, 0, nullptr);
+    glBindBuffer(GL_ARRAY_BUFFER, m.id_position_vbo);
+    glVertexPointer(3, GL_FLOAT, 0, nullptr);
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(m.triangle_count * 3));
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+  }
+  glShadeModel(GL_SMOOTH);
+  RELIGHT_RETURN_IF_ERROR(m.Finish("DrawTriangleIds"));
+
+  const size_t w = static_cast<size_t>(m.width);
+  for (int y = 0; y < m.height; ++y) {
+    const GLubyte* src = m.color_rgba.data() + static_cast<size_t>(m.height - 1 - y) * w * 4;
+    uint32_t* dst = out_ids + static_cast<size_t>(y) * w;
+    for (size_t x = 0; x < w; ++x) {
+      const uint32_t code = static_cast<uint32_t>(src[x * 4 + 0]) | static_cast<uint32_t>(src[x * 4 + 1]) << 8 |
+                            static_cast<uint32_t>(src[x * 4 + 2]) << 16;
+      dst[x] = code == 0 ? kNoTriangle : code - 1;
+    }
+  }
+  return Status::Ok();
+}
+
+Status OsMesaFrame::UnprojectPixel(int x, int y, float out_world[3]) {
+  Impl& m = *impl_;
+  if (out_world == nullptr) return Status(StatusCode::kInvalidArgument, "render: UnprojectPixel: null output");
+  RELIGHT_RETURN_IF_ERROR(m.MakeCurrent());
+  if (!m.has_drawn) return Status(StatusCode::kInvalidArgument, "render: UnprojectPixel before any draw");
+  if (x < 0 || y < 0 || x >= m.width || y >= m.height) {
+    return Status(StatusCode::kInvalidArgument,
+                  StrFormat("render: pixel (%d, %d) outside %dx%d", x, y, m.width, m.height));
+  }
+  GLfloat depth = 1.0f;
+  glReadPixels(x, m.height - 1 - y, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
+  RELIGHT_RETURN_IF_ERROR(CheckGl("reading depth"));
+  // The clear value: nothing was drawn under this pixel.
+  if (!(depth < 1.0f)) {
+    return Status(StatusCode::kNotFound, StrFormat("render: pixel (%d, %d) shows background", x, y));
+  }
+  double world_m[3];
+  render::UnprojectDepth(m.drawn_camera, x, y, m.width, m.height, depth, world_m);
+  for (int i = 0; i < 3; ++i) out_world[i] = static_cast<float>(world_m[i]);
+  return Status::Ok();
+}
+
+}  // namespace relight
