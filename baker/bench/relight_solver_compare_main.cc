@@ -16,6 +16,7 @@
 
 #include "baker_core.h"
 #include "reference.h"
+#include "surface_agreement.h"
 #include "relight/baker/baker.h"
 #include "relight/baker/photometry.h"
 #include "relight/baker/scene.h"
@@ -103,7 +104,26 @@ std::vector<Rgb> Concat(const std::vector<std::vector<Rgb>>& grids) {
   return out;
 }
 
-int Run(const std::string& path, double patch_size_m, double epsilon, int threads) {
+// Per surface, at the scene's defaults: the hierarchical vertex luminance
+// against the dense one, relative to each surface's peak (a bias shows as a
+// signed mean of one sign on every surface).
+void PrintSurfaceTable(const BakerCore& dense, const BakerCore& hier,
+                       const std::vector<FixtureSetting>& settings) {
+  const ReferenceResult want = ComputeReference(dense, settings);
+  const ReferenceResult got = ComputeReference(hier, settings);
+  std::printf("\nPer surface, scene defaults (hierarchical - dense, %% of the surface's peak; "
+              "%d sweeps):\n\n| surface | peak cd/m^2 | mean signed | mean abs | max abs |\n"
+              "| --- | ---: | ---: | ---: | ---: |\n",
+              hier.hierarchical_solver ? hier.hierarchical_solver->max_sweeps_used() : 0);
+  for (const SurfaceAgreement& a :
+       CompareBySurface(dense.scene, dense.mesh, got.vertex_luminance, want.vertex_luminance)) {
+    std::printf("| %s | %.4g | %+.3f%% | %.3f%% | %.3f%% |\n", a.name.c_str(), a.peak,
+                100 * a.mean_signed, 100 * a.mean_abs, 100 * a.max_abs);
+  }
+}
+
+int Run(const std::string& path, double patch_size_m, double epsilon, double tolerance,
+        int threads) {
   Scene scene = LoadScene(path);
   if (patch_size_m > 0) scene.patch_size_m = patch_size_m;
   BakeOptions dense_options;
@@ -112,6 +132,7 @@ int Run(const std::string& path, double patch_size_m, double epsilon, int thread
   BakeOptions hier_options = dense_options;
   hier_options.solver = SolverKind::kHierarchical;
   hier_options.link_epsilon = epsilon;
+  if (tolerance > 0) hier_options.solve_tolerance = tolerance;
 
   auto t = Clock::now();
   const auto dense = BuildBakerCore(scene, dense_options, nullptr);
@@ -152,6 +173,7 @@ int Run(const std::string& path, double patch_size_m, double epsilon, int thread
                 c.label.c_str(), 100 * v.max_rel, 100 * v.mean_rel, 100 * vi.max_rel,
                 100 * g.max_rel, 100 * gi.max_rel, ds, hs);
   }
+  PrintSurfaceTable(*dense, *hier, Cases(scene).front().settings);
   std::printf("\nErrors relative to the dense solution's peak (indirect: relative to the peak of "
               "the indirect part alone).\nCore build (mesh, rays, form factors or links, "
               "factorisation): dense %.2f s, hierarchical %.2f s (ratio %.3f); solves: dense %.3f "
@@ -170,17 +192,21 @@ int main(int argc, char** argv) {
   double patch_size_m = 0;
   double epsilon = BakeOptions().link_epsilon;
   int threads = 0;
+  double tolerance = 0;
   app.add_option("scene", scene, "scene file (.toml)")->required();
   app.add_option("--patch-size", patch_size_m, "patch edge, m (default: the scene's)")
       ->check(CLI::PositiveNumber);
   app.add_option("--link-epsilon", epsilon, "hierarchical refinement threshold")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  app.add_option("--tolerance", tolerance,
+                 "hierarchical solve tolerance (default: BakeOptions::solve_tolerance)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--threads", threads, "worker threads (0 = all cores)")
       ->check(CLI::Range(0, 1024));
   CLI11_PARSE(app, argc, argv);
   try {
-    return Run(scene, patch_size_m, epsilon, threads);
+    return Run(scene, patch_size_m, epsilon, tolerance, threads);
   } catch (const SceneError& e) {
     std::fprintf(stderr, "relight-solver-compare: error: %s\n", e.what());
     return 2;

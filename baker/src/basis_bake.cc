@@ -180,6 +180,7 @@ relight::Bake Baker::Bake() {
 
   if (core.hierarchical_solver) {
     impl_->report.sweeps = core.hierarchical_solver->max_sweeps_used();
+    impl_->report.residual = core.hierarchical_solver->max_residual();
     if (core.options.store_hierarchy) {
       bake.hierarchy = MakeBakeHierarchy(core.mesh, core.hierarchical_solver->hierarchy(),
                                          core.hierarchical_solver->links());
@@ -192,8 +193,10 @@ relight::Bake Baker::Bake() {
 ReferenceResult Baker::Reference(const std::vector<FixtureSetting>& settings) {
   const Stopwatch time;
   ReferenceResult out = ComputeReference(*impl_->core, settings);
-  if (impl_->core->hierarchical_solver)
+  if (impl_->core->hierarchical_solver) {
     impl_->report.sweeps = impl_->core->hierarchical_solver->max_sweeps_used();
+    impl_->report.residual = impl_->core->hierarchical_solver->max_residual();
+  }
   impl_->report.solve_seconds += time.seconds();
   impl_->report.total_seconds += time.seconds();
   return out;

@@ -12,6 +12,9 @@ namespace {
 // cache for tens of thousands of nodes, and a luminaire's terms split into
 // several blocks so both cores get work.
 constexpr Eigen::Index kMaxBlockColumns = 32;
+// Per gather entry: the mean factor, its gradient over the receiver (u, v)
+// and the weights of the source's exitance moment (u, v).
+constexpr size_t kGatherCoefficients = 5;
 
 using Row = Eigen::Map<Eigen::ArrayXd>;
 using ConstRow = Eigen::Map<const Eigen::ArrayXd>;
@@ -44,18 +47,30 @@ HierarchicalSolver::HierarchicalSolver(Hierarchy hierarchy, std::vector<Hierarch
   }
   for (size_t k = 0; k < n; ++k) gather_offsets_[k + 1] += gather_offsets_[k];
   gather_source_.resize(gather_offsets_[n]);
-  gather_factor_.resize(3 * gather_offsets_[n]);
+  gather_factor_.resize(kGatherCoefficients * gather_offsets_[n]);
   std::vector<uint32_t> fill(gather_offsets_.begin(), gather_offsets_.end() - 1);
-  const auto add = [&](uint32_t to, uint32_t from, double f, const std::array<double, 2>& g) {
+  // The source's side of a link: how much of the light `to` gathers comes
+  // from each part of `from` is, by reciprocity, how much of to's light
+  // reaches that part: the reverse factor's linear field f_rev + g_rev . x
+  // over `from`. Weighting from's exitance by it, rather than taking its
+  // plain mean, gives the mean irradiance on `to`
+  //   f (B_mean + (g_rev / f_rev) . m),  m = mean of B (x - c) over `from`,
+  // m being from's first moment of exitance (zero for a leaf).
+  const auto add = [&](uint32_t to, uint32_t from, double f, const std::array<double, 2>& g,
+                       double f_rev, const std::array<double, 2>& g_rev) {
     const uint32_t e = fill[to]++;
     gather_source_[e] = from;
-    gather_factor_[3 * e] = f;
-    gather_factor_[3 * e + 1] = g[0];
-    gather_factor_[3 * e + 2] = g[1];
+    double* c = &gather_factor_[kGatherCoefficients * e];
+    c[0] = f;
+    c[1] = g[0];
+    c[2] = g[1];
+    const bool moment = options_.source_moments && !hierarchy_.nodes[from].leaf() && f_rev > 0;
+    c[3] = moment ? f * g_rev[0] / f_rev : 0.0;
+    c[4] = moment ? f * g_rev[1] / f_rev : 0.0;
   };
   for (const HierarchyLink& l : links_) {
-    if (l.f_pq > 0) add(l.p, l.q, l.f_pq, l.g_pq);
-    if (l.f_qp > 0) add(l.q, l.p, l.f_qp, l.g_qp);
+    if (l.f_pq > 0) add(l.p, l.q, l.f_pq, l.g_pq, l.f_qp, l.g_qp);
+    if (l.f_qp > 0) add(l.q, l.p, l.f_qp, l.g_qp, l.f_pq, l.g_pq);
   }
   child_weight_.assign(n, 0);
   centre_uv_.resize(n);
@@ -126,9 +141,11 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
   const Eigen::Index w = task.width;
   const size_t ws = static_cast<size_t>(w);
   const Eigen::VectorXd& rho = rho_[task.channel];
-  // Node-major blocks: row k of a block is node k's w columns. g0, gu, gv:
-  // gathered irradiance a + b u + c v over the node (surface frame, m).
-  std::vector<double> s(n * ws, 0.0), b(n * ws, 0.0);
+  // Node-major blocks: row k of a block is node k's w columns. b: exitance
+  // (a node's is its leaves' area mean); mu, mv: its first moment about the
+  // node's centre (surface frame, m; 0 at a leaf). g0, gu, gv: gathered
+  // irradiance a + b u + c v over the node.
+  std::vector<double> s(n * ws, 0.0), b(n * ws, 0.0), mu(n * ws, 0.0), mv(n * ws, 0.0);
   std::vector<double> g0(n * ws, 0.0), gu(n * ws, 0.0), gv(n * ws, 0.0);
   const auto row = [ws](std::vector<double>& v, size_t k) { return Row(v.data() + k * ws, ws); };
   const auto crow = [ws](const std::vector<double>& v, size_t k) {
@@ -141,66 +158,114 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
     for (Eigen::Index j = 0; j < w; ++j) s[k * ws + j] = scale * rhs(i, task.column + j);
   }
   b = s;
+  // Pull: exitance and its moment up the tree as area-weighted sums.
   const auto pull = [&](size_t begin, size_t end) {
     // Parents come before children: in reverse, children are done first.
     for (size_t k = end; k-- > begin;) {
       const HierarchyNode& node = nodes[k];
       if (node.leaf()) continue;
-      Row out_row = row(b, k);
-      out_row.setZero();
-      for (uint32_t c = node.first_child; c < node.first_child + node.child_count; ++c)
-        out_row += child_weight_[c] * crow(b, c);
+      Row bk = row(b, k), uk = row(mu, k), vk = row(mv, k);
+      bk.setZero();
+      uk.setZero();
+      vk.setZero();
+      for (uint32_t c = node.first_child; c < node.first_child + node.child_count; ++c) {
+        const double wc = child_weight_[c];
+        const ConstRow bc = crow(b, c);
+        bk += wc * bc;
+        uk += wc * crow(mu, c) + (wc * (centre_uv_[c][0] - centre_uv_[k][0])) * bc;
+        vk += wc * crow(mv, c) + (wc * (centre_uv_[c][1] - centre_uv_[k][1])) * bc;
+      }
     }
   };
   const size_t surfaces = hierarchy_.surface_count();
   for (size_t sf = 0; sf < surfaces; ++sf)
     pull(hierarchy_.surface_begin[sf], hierarchy_.surface_begin[sf + 1]);
 
+  // Every node of surface sf gathers from the current exitance of the others
+  // (a planar surface never sees itself), and the light is pushed down: a
+  // leaf's row of g0 is then its mean irradiance.
+  const auto gather = [&](size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) {
+      Row a = row(g0, k);
+      a.setZero();
+      const uint32_t e0 = gather_offsets_[k], e1 = gather_offsets_[k + 1];
+      const bool inner = !nodes[k].leaf();
+      Row du = row(gu, k), dv = row(gv, k);
+      if (inner) {
+        du.setZero();
+        dv.setZero();
+      }
+      for (uint32_t e = e0; e < e1; ++e) {
+        const uint32_t q = gather_source_[e];
+        const double* c = &gather_factor_[kGatherCoefficients * e];
+        const ConstRow src = crow(b, q);
+        a += c[0] * src;
+        if (c[3] != 0 || c[4] != 0) a += c[3] * crow(mu, q) + c[4] * crow(mv, q);
+        if (inner) {
+          du += c[1] * src;
+          dv += c[2] * src;
+        }
+      }
+      // About the surface's origin rather than the node's centre, so
+      // that a child can add its parent's coefficients as they are.
+      if (inner) a -= centre_uv_[k][0] * du + centre_uv_[k][1] * dv;
+    }
+    // Push: irradiance gathered at a node reaches all of its area; a leaf
+    // takes the linear irradiance at its centre (its mean over the leaf).
+    for (size_t k = begin + 1; k < end; ++k) {
+      const size_t parent = nodes[k].parent;
+      row(g0, k) += crow(g0, parent);
+      if (nodes[k].leaf()) {
+        row(g0, k) += centre_uv_[k][0] * crow(gu, parent) + centre_uv_[k][1] * crow(gv, parent);
+      } else {
+        row(gu, k) += crow(gu, parent);
+        row(gv, k) += crow(gv, parent);
+      }
+    }
+  };
+
+  // Columns that are all but zero next to the block's largest do not hold
+  // the iteration up: relative figures are taken over the others.
+  const auto worst_relative = [&](const Eigen::ArrayXd& value, const Eigen::ArrayXd& peak) {
+    const double block_peak = peak.maxCoeff();
+    double worst = 0;
+    for (Eigen::Index j = 0; j < w; ++j)
+      if (peak(j) > 1e-12 * block_peak) worst = std::max(worst, value(j) / peak(j));
+    return worst;
+  };
+  // The residual r = S + rho K B - B of the current B, largest over the
+  // leaves, relative to each column's peak exitance (one extra gather).
+  const auto residual = [&]() {
+    Eigen::ArrayXd r = Eigen::ArrayXd::Zero(w), peak = Eigen::ArrayXd::Zero(w);
+    for (size_t sf = 0; sf < surfaces; ++sf) {
+      const size_t begin = hierarchy_.surface_begin[sf], end = hierarchy_.surface_begin[sf + 1];
+      gather(begin, end);
+      for (size_t k = begin; k < end; ++k) {
+        if (!nodes[k].leaf()) continue;
+        const double rk = rho(static_cast<Eigen::Index>(nodes[k].patch));
+        r = r.max((crow(s, k) + rk * crow(g0, k) - crow(b, k)).abs());
+        peak = peak.max(crow(b, k).abs());
+      }
+    }
+    return worst_relative(r, peak);
+  };
+
+  // The error of B is at most |r| / (1 - rho_max) (the links' rows sum to
+  // about 1, so rho K shrinks any vector by rho_max): stopping at
+  // |r| <= tolerance (1 - rho_max) peak bounds the error by tolerance x peak.
+  const double rho_max = std::min(rho.size() > 0 ? rho.maxCoeff() : 0.0, 0.999);
+  const double residual_bar = options_.tolerance * (1 - rho_max);
   Eigen::ArrayXd change(w), peak(w);
-  double previous = 0;
+  double previous = 0, stopped_at = 0;
   int sweep = 0;
   while (sweep < options_.max_sweeps) {
     ++sweep;
     change.setZero();
     peak.setZero();
-    // Gauss-Seidel over surfaces: each surface gathers from the latest
-    // exitance of all the others (a planar surface never sees itself).
+    // Gauss-Seidel over surfaces: each gathers the latest exitance of the others.
     for (size_t sf = 0; sf < surfaces; ++sf) {
       const size_t begin = hierarchy_.surface_begin[sf], end = hierarchy_.surface_begin[sf + 1];
-      for (size_t k = begin; k < end; ++k) {
-        Row a = row(g0, k);
-        a.setZero();
-        const uint32_t e0 = gather_offsets_[k], e1 = gather_offsets_[k + 1];
-        if (nodes[k].leaf()) {
-          for (uint32_t e = e0; e < e1; ++e)
-            a += gather_factor_[3 * e] * crow(b, gather_source_[e]);
-          continue;
-        }
-        Row du = row(gu, k), dv = row(gv, k);
-        du.setZero();
-        dv.setZero();
-        for (uint32_t e = e0; e < e1; ++e) {
-          const ConstRow src = crow(b, gather_source_[e]);
-          a += gather_factor_[3 * e] * src;
-          du += gather_factor_[3 * e + 1] * src;
-          dv += gather_factor_[3 * e + 2] * src;
-        }
-        // About the surface's origin rather than the node's centre, so
-        // that a child can add its parent's coefficients as they are.
-        a -= centre_uv_[k][0] * du + centre_uv_[k][1] * dv;
-      }
-      // Push: irradiance gathered at a node reaches all of its area; a leaf
-      // takes the linear irradiance at its centre (its mean over the leaf).
-      for (size_t k = begin + 1; k < end; ++k) {
-        const size_t parent = nodes[k].parent;
-        row(g0, k) += crow(g0, parent);
-        if (nodes[k].leaf()) {
-          row(g0, k) += centre_uv_[k][0] * crow(gu, parent) + centre_uv_[k][1] * crow(gv, parent);
-        } else {
-          row(gu, k) += crow(gu, parent);
-          row(gv, k) += crow(gv, parent);
-        }
-      }
+      gather(begin, end);
       for (size_t k = begin; k < end; ++k) {
         if (!nodes[k].leaf()) continue;
         const double r = rho(static_cast<Eigen::Index>(nodes[k].patch));
@@ -212,22 +277,23 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
       }
       pull(begin, end);
     }
-    // Per column relative change; columns that are all but zero next to
-    // the block's largest do not hold the iteration up.
-    const double block_peak = peak.maxCoeff();
-    double worst = 0;
-    for (Eigen::Index j = 0; j < w; ++j) {
-      if (peak(j) > 1e-12 * block_peak) worst = std::max(worst, change(j) / peak(j));
-    }
-    if (worst == 0) break;
-    if (sweep >= 2) {
-      const double rate = std::clamp(worst / previous, 0.0, 0.99);
-      if (worst * rate / (1 - rate) < options_.tolerance) break;
-    }
+    // The sweeps' change only says when to look: the last change times
+    // r / (1 - r), r the observed contraction, estimates what is left. The
+    // residual, measured then, decides.
+    const double worst = worst_relative(change, peak);
+    const double rate = sweep >= 2 && previous > 0 ? std::clamp(worst / previous, 0.0, 0.99) : 0.99;
     previous = worst;
+    if (worst != 0 && worst * rate / (1 - rate) >= options_.tolerance) continue;
+    stopped_at = residual();
+    if (stopped_at <= residual_bar) break;
   }
+  if (sweep >= options_.max_sweeps) stopped_at = residual();
   int seen = max_sweeps_used_.load();
   while (sweep > seen && !max_sweeps_used_.compare_exchange_weak(seen, sweep)) {
+  }
+  double seen_residual = max_residual_.load();
+  while (stopped_at > seen_residual &&
+         !max_residual_.compare_exchange_weak(seen_residual, stopped_at)) {
   }
   for (size_t k = 0; k < n; ++k) {
     if (!nodes[k].leaf()) continue;

@@ -2,10 +2,11 @@
 //   M = S + rho (K M),  K = push . links . pull
 // solved by Gauss-Seidel sweeps over the surfaces' quadtrees: per surface,
 // every node gathers irradiance over its links (F times the source node's
-// exitance, varying linearly over the node by the links' gradients), the
+// exitance, varying linearly over the node by the links' gradients; the
+// source's exitance weighted linearly over it by the reverse gradient), the
 // gathered irradiance is pushed down to the leaves (evaluated at each leaf's
 // centre, which is its mean), leaves take M = S + rho E_gathered, and
-// exitance is pulled up as area-weighted averages. Every right-hand side
+// exitance and its first moment are pulled up as area-weighted sums. Every right-hand side
 // (all SH terms of a luminaire, Dobashi Eq. 17) goes through one sweep as a
 // dense block of columns, since the links (F) are shared by all of them.
 // Columns are split into blocks that run on separate threads.
@@ -24,10 +25,19 @@
 namespace relight::baker {
 
 struct HierarchicalSolveOptions {
-  // A sweep stops the iteration when the estimated remaining change of every
-  // column (the last change times r / (1 - r), r the observed contraction),
-  // relative to that column's largest leaf exitance, is below this.
+  // The sweeps stop when the residual |S + rho K B - B| of every column, the
+  // largest over the leaves relative to that column's largest leaf
+  // exitance, is at most tolerance x (1 - rho_max): the error of B is then
+  // at most tolerance x peak. (The residual costs a gather; it is measured
+  // once the sweeps' estimated remaining change is below the tolerance.)
   double tolerance = 1e-5;
+  // Weight a source node's exitance by where its light reaches the receiver
+  // (the link's reverse gradient times the node's first moment of exitance)
+  // instead of taking its mean: without it a coarse link misses how the
+  // exitance varies over its source, which darkens rooms by ~0.5 %
+  // (docs/hierarchy.md, "Bias and its fix"). Off: the stored links' plain
+  // operator, as the runtime's solve uses it.
+  bool source_moments = true;
   int max_sweeps = 500;
   int threads = 0;  // 0 = every core
 };
@@ -51,6 +61,8 @@ class HierarchicalSolver {
   const std::vector<HierarchyLink>& links() const { return links_; }
   // Most sweeps any column block needed so far.
   int max_sweeps_used() const { return max_sweeps_used_.load(); }
+  // Largest relative residual any column block stopped at so far.
+  double max_residual() const { return max_residual_.load(); }
 
  private:
   struct Task {
@@ -69,13 +81,15 @@ class HierarchicalSolver {
   std::array<Eigen::VectorXd, 3> rho_;
   std::array<int, 3> same_as_{};  // channel whose reflectances this one repeats (itself if none)
   // Gather lists: node n gathers from gather_source[k] with factor
-  // gather_factor[k] (3 per entry: mean, d/du, d/dv over n),
+  // gather_factor[k] (5 per entry: mean, d/du, d/dv over n, weights of the
+  // source's exitance moment u, v),
   // k in [gather_offsets[n], gather_offsets[n + 1]).
   std::vector<uint32_t> gather_offsets_, gather_source_;
   std::vector<double> gather_factor_;
   std::vector<double> child_weight_;  // area of a node over its parent's
   std::vector<std::array<double, 2>> centre_uv_;  // per node, in its surface's frame
   mutable std::atomic<int> max_sweeps_used_{0};
+  mutable std::atomic<double> max_residual_{0.0};
 };
 
 }  // namespace relight::baker

@@ -200,9 +200,11 @@ std::string HierarchySummary(const std::vector<relight::BakeSectionSize>& sectio
 
 std::string SolverSummary(const relight::baker::BakeReport& r) {
   if (r.solver != relight::baker::SolverKind::kHierarchical) return "dense solver";
-  char text[160];
-  std::snprintf(text, sizeof text, "hierarchical solver (%zu nodes, %zu links, %d sweeps)", r.nodes,
-                r.links, r.sweeps);
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "hierarchical solver (%zu nodes, %zu links, %d sweeps, stopped at residual "
+                "%.1e of peak)",
+                r.nodes, r.links, r.sweeps, r.residual);
   return text;
 }
 

@@ -92,16 +92,23 @@ class StoredSolve {
     gathers_.resize(n);
     for (size_t i = 0; i < h_.link_count(); ++i) {
       const uint32_t p = h_.link_p[i], q = h_.link_q[i];
-      if (h_.link_f_pq[i] != 0) gathers_[p].emplace_back(q, h_.link_f_pq[i], &h_.link_g_pq[2 * i]);
-      if (h_.link_f_qp[i] != 0) gathers_[q].emplace_back(p, h_.link_f_qp[i], &h_.link_g_qp[2 * i]);
+      // The source's exitance weighted by the reverse factor's gradient
+      // over it (its first moment), as the baker's solver does.
+      if (h_.link_f_pq[i] != 0)
+        gathers_[p].emplace_back(q, h_.link_f_pq[i], &h_.link_g_pq[2 * i], h_.link_f_qp[i],
+                                 &h_.link_g_qp[2 * i], !h_.leaf(q));
+      if (h_.link_f_qp[i] != 0)
+        gathers_[q].emplace_back(p, h_.link_f_qp[i], &h_.link_g_qp[2 * i], h_.link_f_pq[i],
+                                 &h_.link_g_pq[2 * i], !h_.leaf(p));
     }
   }
 
   // Exitance per node (lm/m^2) for emitted exitance per node (leaves only).
   std::vector<double> Solve(int channel, const std::vector<double>& emitted) const {
     const size_t n = h_.node_count();
-    std::vector<double> b = emitted, g0(n), gu(n), gv(n);
-    for (size_t r = 0; r + 1 < run_begin_.size(); ++r) Pull(run_begin_[r], run_begin_[r + 1], &b);
+    std::vector<double> b = emitted, g0(n), gu(n), gv(n), mu(n), mv(n);
+    for (size_t r = 0; r + 1 < run_begin_.size(); ++r)
+      Pull(run_begin_[r], run_begin_[r + 1], &b, &mu, &mv);
     for (int sweep = 0; sweep < 2000; ++sweep) {
       double change = 0, peak = 0;
       for (size_t r = 0; r + 1 < run_begin_.size(); ++r) {
@@ -109,7 +116,7 @@ class StoredSolve {
         for (size_t k = begin; k < end; ++k) {
           g0[k] = gu[k] = gv[k] = 0;
           for (const Gather& g : gathers_[k]) {
-            g0[k] += g.f * b[g.source];
+            g0[k] += g.f * b[g.source] + g.mu * mu[g.source] + g.mv * mv[g.source];
             gu[k] += g.du * b[g.source];
             gv[k] += g.dv * b[g.source];
           }
@@ -131,7 +138,7 @@ class StoredSolve {
           peak = std::max(peak, std::abs(updated));
           b[k] = updated;
         }
-        Pull(begin, end, &b);
+        Pull(begin, end, &b, &mu, &mv);
       }
       if (change <= 1e-13 * peak) break;
     }
@@ -149,13 +156,19 @@ class StoredSolve {
 
  private:
   struct Gather {
-    Gather(uint32_t from, uint32_t factor, const int32_t* gradient)
+    Gather(uint32_t from, uint32_t factor, const int32_t* gradient, uint32_t reverse,
+           const int32_t* reverse_gradient, bool inner_source)
         : source(from),
           f(std::ldexp(factor, -32)),
           du(std::ldexp(gradient[0], -kBakeGradientFracBits)),
-          dv(std::ldexp(gradient[1], -kBakeGradientFracBits)) {}
+          dv(std::ldexp(gradient[1], -kBakeGradientFracBits)) {
+      if (!inner_source || reverse == 0) return;
+      const double f_rev = std::ldexp(reverse, -32);
+      mu = f * std::ldexp(reverse_gradient[0], -kBakeGradientFracBits) / f_rev;
+      mv = f * std::ldexp(reverse_gradient[1], -kBakeGradientFracBits) / f_rev;
+    }
     uint32_t source;
-    double f, du, dv;
+    double f, du, dv, mu = 0, mv = 0;
   };
 
   Vec3 Corner(size_t node, int k) const {
@@ -180,14 +193,22 @@ class StoredSolve {
     }
     return (1.0 / area) * sum;
   }
-  void Pull(size_t begin, size_t end, std::vector<double>* b) const {
+  // Exitance (area mean) and its first moment about the node's centre.
+  void Pull(size_t begin, size_t end, std::vector<double>* b, std::vector<double>* mu,
+            std::vector<double>* mv) const {
     for (size_t k = end; k-- > begin;) {
       if (h_.leaf(static_cast<uint32_t>(k))) continue;
-      double sum = 0;
+      double sum = 0, su = 0, sv = 0;
       const uint32_t first = h_.node_first_child[k];
-      for (uint32_t c = first; c < first + h_.node_child_count[k]; ++c)
-        sum += child_weight_[c] * (*b)[c];
+      for (uint32_t c = first; c < first + h_.node_child_count[k]; ++c) {
+        const double w = child_weight_[c];
+        sum += w * (*b)[c];
+        su += w * ((*mu)[c] + (centre_uv_[c][0] - centre_uv_[k][0]) * (*b)[c]);
+        sv += w * ((*mv)[c] + (centre_uv_[c][1] - centre_uv_[k][1]) * (*b)[c]);
+      }
       (*b)[k] = sum;
+      (*mu)[k] = su;
+      (*mv)[k] = sv;
     }
   }
 

@@ -38,8 +38,10 @@ struct BakeOptions {
   // exitance exceeds this fraction of the brightest exitance (BF refinement);
   // 0 links every pair of patches (the dense solver's form factors).
   double link_epsilon = 1e-3;
-  // Hierarchical: sweeps stop when the estimated remaining change of the
-  // exitance is below this fraction of each right-hand side's peak.
+  // Hierarchical: sweeps stop when the residual |S + rho K M - M| of each
+  // right-hand side is at most this x (1 - largest reflectance) of its peak
+  // exitance, so the exitance's error is at most this fraction of the peak
+  // (docs/hierarchy.md, "Solve").
   double solve_tolerance = 1e-4;
   // Hierarchical: store the quadtrees and links in the bake (sections HIER
   // and LINK) for light sources placed on surfaces at run time.
@@ -53,6 +55,7 @@ struct BakeReport {
   SolverKind solver = SolverKind::kDense;  // the one used (never kAuto)
   size_t nodes = 0, links = 0;             // hierarchical: quadtree nodes and links
   int sweeps = 0;                          // hierarchical: most Gauss-Seidel sweeps of a solve
+  double residual = 0;  // hierarchical: largest residual a solve stopped at, of its peak exitance
 };
 
 // One fixture's state for a reference solve (same meaning as the runtime's).
