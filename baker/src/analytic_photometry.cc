@@ -200,6 +200,18 @@ std::vector<MalformedFixture> MalformedPhotometricFixtures() {
     out.push_back({"ies_non_numeric.ies", text, "got '12O'", LineOf(text, at + 1)});
   }
   {
+    // Issue 17: counts a header declares are checked against the values
+    // present before anything is sized from them (this asked for ~80 GB).
+    const std::string text = ReplaceAfter(ies, "TILT=NONE", " 73 19 ", " 10000 10000 ");
+    out.push_back({"ies_huge_counts.ies", text, "(10000 vertical, 10000 horizontal) on line 6 declares 20000 values, but the file ends after 1479", 0});
+  }
+  {
+    // Issue 17: a named file that never ends (or a FIFO) is refused, not read.
+    const std::string text = ReplaceAfter(ies, "[LUMINAIRE]", "TILT=NONE", "TILT=/dev/zero");
+    out.push_back({"ies_tilt_dev_zero.ies", text,
+                   "'/dev/zero' is a character device, not a regular file", 5});
+  }
+  {
     const std::string text = ReplaceAfter(ies, "[LUMINAIRE]", "TILT=NONE", "TILT=SOMETIMES");
     out.push_back({"ies_bad_tilt_file.ies", text, "cannot read the tilt file", 0});
   }
@@ -238,6 +250,16 @@ std::vector<MalformedFixture> MalformedPhotometricFixtures() {
     const size_t end = text.find("\r\n", at);
     text.replace(at, end - at, std::to_string(std::stoi(text.substr(at, end - at)) + 1));
     out.push_back({"ldt_wrong_count.ldt", text, "gamma angles must increase strictly", 0});
+  }
+  {
+    // Mc (line 4) and Ng (line 6) far beyond the values the file holds.
+    std::string text = ldt;
+    size_t at = 0;
+    for (int line = 1; line < 4; ++line) at = text.find("\r\n", at) + 2;
+    text.replace(at, text.find("\r\n", at) - at, "10000");
+    at = text.find("\r\n", text.find("\r\n", at) + 2) + 2;
+    text.replace(at, text.find("\r\n", at) - at, "10000");
+    out.push_back({"ldt_huge_counts.ldt", text, "Ng = 10000 gamma angles on line 4 declares 20000 values, but the file ends after", 0});
   }
   {
     std::string text = ldt;

@@ -126,7 +126,21 @@ Baker::Baker(const Scene& scene, const BakeOptions& options)
   if (options.lid_samples < 2) {
     throw SceneError(scene.path, 0, "lid samples must be at least 2");
   }
+  // No luminaire: no SH term to solve, and the solves would be handed empty
+  // matrices. Only a hierarchy stored for run-time surface emitters is then
+  // worth a bake. Checked before the form factors when the options decide it.
+  const auto nothing_to_bake = [&] {
+    throw SceneError(scene.path, 0,
+                     "the scene has no luminaires: nothing to bake (add a [[luminaire]]; only a "
+                     "hierarchical bake that stores its links for run-time surface emitters "
+                     "needs none)");
+  };
+  if (scene.luminaires.empty() &&
+      (!options.store_hierarchy || options.solver == SolverKind::kDense)) {
+    nothing_to_bake();
+  }
   impl_->core = BuildBakerCore(scene, options, &impl_->progress);
+  if (scene.luminaires.empty() && !impl_->core->hierarchical_solver) nothing_to_bake();
   impl_->report = impl_->core->report;
 }
 
@@ -161,7 +175,9 @@ relight::Bake Baker::Bake() {
   impl_->report.sh_terms = terms;
 
   double white = scene.white_cd_m2;
-  if (!(white > 0)) {
+  // Without luminaires there is no light to set a white by (and the
+  // reference would solve with zero right-hand sides): the default white.
+  if (!(white > 0) && !scene.luminaires.empty()) {
     const ReferenceResult ref = ComputeReference(core, DefaultSettings());
     std::vector<double> y;
     for (const Rgb& rgb : ref.vertex_luminance) y.push_back(Photometric(rgb));

@@ -6,9 +6,7 @@
 // separated by blanks or commas over any number of lines (PITFALLS.md).
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
-
+#include "bounded_read.h"
 #include "photometric_text.h"
 #include "type_b_photometry.h"
 #include "relight/baker/photometric_file.h"
@@ -17,7 +15,11 @@
 namespace relight::baker {
 namespace {
 
-constexpr int kMaxAngles = 100000;  // far above any real file; bounds the allocation
+// Limits (docs/photometry.md), far above any real file (a 0.5-degree full
+// table is 361 x 721 = 260281 values) and checked, like every count, against
+// the values actually present before anything is sized from them.
+constexpr int kMaxAngles = 10000;               // per axis, and TILT angles
+constexpr size_t kMaxCandelaValues = 1000000;   // vertical x horizontal
 
 std::string Upper(std::string s) {
   for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
@@ -59,7 +61,10 @@ std::vector<double> ReadAngles(NumberStream* in, int count, const char* what, do
 
 void ReadTilt(NumberStream* in, TiltData* tilt) {
   tilt->lamp_geometry = in->Integer("TILT lamp-to-luminaire geometry", 1, 3);
+  const int count_line = in->line();
   const int n = in->Integer("TILT angle count", 1, kMaxAngles);
+  in->Require(2 * static_cast<size_t>(n),
+              "TILT angle count " + std::to_string(n) + " (angles and factors)", count_line);
   tilt->angle_deg = ReadAngles(in, n, "TILT angle", 0, 180);
   for (int i = 0; i < n; ++i) {
     const int line = in->line();
@@ -125,16 +130,16 @@ PhotometricTable ParseIes(const std::string& text, const std::string& path) {
     // TILT=<file>: the tilt data lives in a file beside this one.
     const size_t slash = path.find_last_of('/');
     const std::string tilt_path =
-        (slash == std::string::npos ? std::string() : path.substr(0, slash + 1)) + t.tilt;
-    std::ifstream tf(tilt_path, std::ios::binary);
-    if (!tf) {
+        t.tilt[0] == '/' ? t.tilt
+                         : (slash == std::string::npos ? std::string() : path.substr(0, slash + 1)) +
+                               t.tilt;
+    std::string tilt_file_text, why;
+    if (!ReadBoundedFile(tilt_path, kMaxPhotometricFileBytes, &tilt_file_text, &why)) {
       throw SceneError(path, tilt_line_no,
-                       "TILT=" + t.tilt + ": cannot read the tilt file '" + tilt_path +
-                           "' (expected NONE, INCLUDE or an existing file)");
+                       "TILT=" + t.tilt + ": cannot read the tilt file: " + why +
+                           " (expected NONE, INCLUDE or an existing file)");
     }
-    std::ostringstream tilt_text_stream;
-    tilt_text_stream << tf.rdbuf();
-    const std::vector<std::string> tilt_lines = SplitLines(tilt_text_stream.str());
+    const std::vector<std::string> tilt_lines = SplitLines(tilt_file_text);
     NumberStream tilt_in(tilt_lines, 0, tilt_path, false);
     ReadTilt(&tilt_in, &t.tilt_data);
   }
@@ -151,6 +156,7 @@ PhotometricTable ParseIes(const std::string& text, const std::string& path) {
   if (!(multiplier > 0)) {
     in.Fail(multiplier_line, "candela multiplier must be > 0, got " + Fmt(multiplier));
   }
+  const int counts_line = in.line();
   const int n_vertical = in.Integer("number of vertical angles", 1, kMaxAngles);
   const int n_horizontal = in.Integer("number of horizontal angles", 1, kMaxAngles);
   const int type_line = in.line();
@@ -174,6 +180,10 @@ PhotometricTable ParseIes(const std::string& text, const std::string& path) {
 
   t.multiplier = multiplier * ballast * lamp_factor;
   t.lamp_lumens = lumens_per_lamp > 0 ? lamps * lumens_per_lamp : 0;
+  in.Require(static_cast<size_t>(n_vertical) + static_cast<size_t>(n_horizontal),
+             "the angle counts (" + std::to_string(n_vertical) + " vertical, " +
+                 std::to_string(n_horizontal) + " horizontal)",
+             counts_line);
   std::vector<double> vertical =
       ReadAngles(&in, n_vertical, "vertical angle", type_b ? -90 : 0, type_b ? 90 : 180);
   const int h_line = in.line();
@@ -184,6 +194,16 @@ PhotometricTable ParseIes(const std::string& text, const std::string& path) {
                         std::to_string(n_vertical) + " and " + std::to_string(n_horizontal));
   }
   if (!type_b) t.symmetry = SymmetryOf(horizontal, &in, h_line);
+  const size_t n_candela = static_cast<size_t>(n_vertical) * static_cast<size_t>(n_horizontal);
+  if (n_candela > kMaxCandelaValues) {
+    in.Fail(counts_line, std::to_string(n_vertical) + " vertical x " + std::to_string(n_horizontal) +
+                        " horizontal angles make " + std::to_string(n_candela) +
+                        " candela values, more than the limit of " +
+                        std::to_string(kMaxCandelaValues));
+  }
+  in.Require(n_candela, std::to_string(n_horizontal) + " x " + std::to_string(n_vertical) +
+                            " candela table",
+             counts_line);
   std::vector<double> candela;
   candela.reserve(static_cast<size_t>(n_vertical) * static_cast<size_t>(n_horizontal));
   for (int h = 0; h < n_horizontal; ++h) {

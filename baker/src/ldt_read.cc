@@ -15,7 +15,10 @@
 namespace relight::baker {
 namespace {
 
-constexpr int kMaxPlanes = 100000;
+// Limits (docs/photometry.md), far above any real file, and checked against
+// the values actually present before anything is sized from them.
+constexpr int kMaxPlanes = 10000;                // Mc and Ng each
+constexpr size_t kMaxIntensities = 1000000;      // stored planes x Ng
 
 class LdtLines {
  public:
@@ -100,6 +103,10 @@ PhotometricTable ParseEulumdat(const std::string& text, const std::string& path)
   for (size_t k = 0; k < 10; ++k) f.Number(ratios_first + k, "direct ratio " + std::to_string(k + 1));
 
   NumberStream in(lines, ratios_first + 10 - 1, path, /*decimal_comma=*/true);
+  in.Require(static_cast<size_t>(mc) + static_cast<size_t>(ng),
+             "Mc = " + std::to_string(mc) + " C angles and Ng = " + std::to_string(ng) +
+                 " gamma angles",
+             4);
   std::vector<double> all_c;
   for (int i = 0; i < mc; ++i) {
     const int line = in.line();
@@ -147,6 +154,17 @@ PhotometricTable ParseEulumdat(const std::string& text, const std::string& path)
   if (isym == 0 && t.c_deg.front() != 0) {
     throw SceneError(path, 3, "Isym 0: the C angles must start at 0");
   }
+  const size_t n_intensities = count * static_cast<size_t>(ng);
+  if (n_intensities > kMaxIntensities) {
+    throw SceneError(path, 4, std::to_string(count) + " stored C planes x Ng = " +
+                                  std::to_string(ng) + " make " + std::to_string(n_intensities) +
+                                  " intensities, more than the limit of " +
+                                  std::to_string(kMaxIntensities));
+  }
+  in.Require(n_intensities, std::to_string(count) + " C planes x " + std::to_string(ng) +
+                                " intensities",
+             4);
+  t.candela.reserve(n_intensities);
   t.lamp_lumens = flux;
   t.multiplier = conversion * flux / 1000.0;
   for (size_t p = 0; p < count; ++p) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -19,8 +20,10 @@ Vec3 NewellNormal(const std::vector<Vec3>& c) {
   return n;
 }
 
-int Divisions(double length_m, double patch_size_m) {
-  return std::max(1, static_cast<int>(std::ceil(length_m / patch_size_m - 1e-9)));
+// In double: a huge surface or a tiny patch size gives counts far past int
+// (converting those would be undefined); CheckBudget bounds them first.
+double Divisions(double length_m, double patch_size_m) {
+  return std::max(1.0, std::ceil(length_m / patch_size_m - 1e-9));
 }
 
 class MeshBuilder {
@@ -36,12 +39,12 @@ class MeshBuilder {
     for (const Vec3& a : s.corners)
       for (const Vec3& b : s.corners) diameter = std::max(diameter, Length(a - b));
     if (!(area2 > 1e-12 * diameter * diameter) || !(diameter > 0)) {
-      throw SceneError(scene_.path, 0, "surface '" + s.name + "' has no area");
+      throw SceneError(scene_.path, s.line, "surface '" + s.name + "' has no area");
     }
     normal_ = (1.0 / area2) * newell;
     for (const Vec3& c : s.corners) {
       if (std::abs(Dot(c - s.corners[0], normal_)) > 1e-4 * diameter) {
-        throw SceneError(scene_.path, 0, "surface '" + s.name + "' is not planar");
+        throw SceneError(scene_.path, s.line, "surface '" + s.name + "' is not planar");
       }
     }
     surface_ = index;
@@ -104,9 +107,11 @@ class MeshBuilder {
   // Bilinear nu x nv grid; cells keep the corners' CCW order.
   void AddQuad(const std::vector<Vec3>& c) {
     const double ps = scene_.patch_size_m;
-    const int nu = Divisions(std::max(Length(c[1] - c[0]), Length(c[2] - c[3])), ps);
-    const int nv = Divisions(std::max(Length(c[3] - c[0]), Length(c[2] - c[1])), ps);
-    CheckBudget(static_cast<size_t>(nu) * static_cast<size_t>(nv));
+    const double du = Divisions(std::max(Length(c[1] - c[0]), Length(c[2] - c[3])), ps);
+    const double dv = Divisions(std::max(Length(c[3] - c[0]), Length(c[2] - c[1])), ps);
+    CheckBudget(du * dv);
+    // Both are now at most max_patches_ (<= kMaxHierarchicalPatches): exact in int.
+    const int nu = static_cast<int>(du), nv = static_cast<int>(dv);
     const uint32_t base = static_cast<uint32_t>(mesh_->positions.size());
     mesh_->surface_grids.push_back(
         {static_cast<uint32_t>(mesh_->patches.size()), base, nu, nv, false});
@@ -131,8 +136,9 @@ class MeshBuilder {
   void AddTriangle(const std::vector<Vec3>& c) {
     const double longest =
         std::max({Length(c[1] - c[0]), Length(c[2] - c[1]), Length(c[0] - c[2])});
-    const int k = Divisions(longest, scene_.patch_size_m);
-    CheckBudget(static_cast<size_t>(k) * static_cast<size_t>(k));
+    const double dk = Divisions(longest, scene_.patch_size_m);
+    CheckBudget(dk * dk);
+    const int k = static_cast<int>(dk);  // at most sqrt(max_patches_)
     const uint32_t base = static_cast<uint32_t>(mesh_->positions.size());
     mesh_->surface_grids.push_back(
         {static_cast<uint32_t>(mesh_->patches.size()), base, k, k, true});
@@ -159,11 +165,21 @@ class MeshBuilder {
     }
   }
 
-  void CheckBudget(size_t more) {
-    if (mesh_->patches.size() + more > max_patches_) {
+  // `more` in double, before any count is converted to an integer; NaN or
+  // infinity (a surface spanning past 1e308 m) fails too.
+  void CheckBudget(double more) {
+    const double total = static_cast<double>(mesh_->patches.size()) + more;
+    if (!(total <= static_cast<double>(max_patches_))) {
       const bool dense = max_patches_ <= kMaxDensePatches;
-      throw SceneError(scene_.path, 0,
-                       "patch_size " + std::to_string(scene_.patch_size_m) + " m gives more than " +
+      const Surface& s = scene_.surfaces[surface_];
+      char count[32], size[32];
+      std::snprintf(count, sizeof count, "%.4g", more);
+      std::snprintf(size, sizeof size, "%g", scene_.patch_size_m);
+      throw SceneError(scene_.path, s.line,
+                       "surface '" + s.name + "': the mesh would be too large: patch_size " +
+                           size + " m cuts it into " + count +
+                           " patches, " + std::to_string(mesh_->patches.size()) +
+                           " before it, more than the limit of " +
                            std::to_string(max_patches_) + " patches" +
                            (dense ? " (dense form factors would not fit in memory; the "
                                     "hierarchical solver has no such limit)"

@@ -4,10 +4,10 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <set>
 #include <sstream>
 
+#include "bounded_read.h"
 #include "polygon_check.h"
 
 namespace relight::baker {
@@ -42,16 +42,18 @@ bool ParseLong(const std::string& text, long* out) {
   return result.ec == std::errc() && result.ptr == end;
 }
 
+// Lines of a file already read whole (bounded_read.h), split at '\n'.
 class LineReader {
  public:
-  explicit LineReader(std::string path) : path_(std::move(path)), in_(path_) {}
-  bool ok() const { return static_cast<bool>(in_); }
+  LineReader(const std::string& text, std::string path) : path_(std::move(path)), text_(text) {}
   // Next line's tokens; false at the end of the file.
   bool Next(std::vector<std::string>* tokens) {
-    std::string line;
-    if (!std::getline(in_, line)) return false;
+    if (pos_ >= text_.size()) return false;
+    size_t end = text_.find('\n', pos_);
+    if (end == std::string::npos) end = text_.size();
     ++line_;
-    *tokens = Tokens(line);
+    *tokens = Tokens(text_.substr(pos_, end - pos_));
+    pos_ = end + 1;
     return true;
   }
   int line() const { return line_; }
@@ -60,16 +62,18 @@ class LineReader {
 
  private:
   std::string path_;
-  std::ifstream in_;
+  const std::string& text_;
+  size_t pos_ = 0;
   int line_ = 0;
 };
 
 void LoadMtl(const std::string& path, const std::string& obj_path, int obj_line,
              std::map<std::string, Rgb>* materials) {
-  LineReader reader(path);
-  if (!reader.ok()) {
-    throw SceneError(obj_path, obj_line, "cannot open material library '" + path + "'");
+  std::string mtl_text, why;
+  if (!ReadBoundedFile(path, kMaxMaterialFileBytes, &mtl_text, &why)) {
+    throw SceneError(obj_path, obj_line, "cannot open material library: " + why);
   }
+  LineReader reader(mtl_text, path);
   std::map<std::string, int> defined_at;  // this file's materials, line of newmtl
   std::set<std::string> with_kd;
   std::string current;
@@ -171,8 +175,15 @@ std::vector<std::vector<Vec3>> Triangulate(const std::vector<Vec3>& polygon) {
 }  // namespace
 
 ObjModel LoadObj(const std::string& path, bool read_materials) {
-  LineReader reader(path);
-  if (!reader.ok()) throw SceneError(path, 0, "cannot open OBJ file");
+  std::string text, why;
+  if (!ReadBoundedFile(path, kMaxMeshFileBytes, &text, &why)) {
+    throw SceneError(path, 0, "cannot open OBJ file: " + why);
+  }
+  return ParseObj(text, path, read_materials);
+}
+
+ObjModel ParseObj(const std::string& text, const std::string& path, bool read_materials) {
+  LineReader reader(text, path);
   ObjModel model;
   std::vector<Vec3> vertices;
   size_t texcoord_count = 0, normal_count = 0;

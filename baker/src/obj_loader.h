@@ -30,8 +30,12 @@ struct ObjModel {
   std::map<std::string, Rgb> materials;  // from every mtllib, by name
 };
 
-// Reads `path`; mtllib paths resolve against its folder. With read_materials
-// false, mtllib and usemtl are skipped (the scene gives the material).
+// Reads `path` (a regular file of at most kMaxMeshFileBytes, bounded_read.h);
+// mtllib paths resolve against its folder. With read_materials false,
+// mtllib and usemtl are skipped (the scene gives the material).
 ObjModel LoadObj(const std::string& path, bool read_materials);
+// The same for a file's text already read; `path` names it in errors and
+// places its mtllib files.
+ObjModel ParseObj(const std::string& text, const std::string& path, bool read_materials);
 
 }  // namespace relight::baker

@@ -8,6 +8,7 @@
 #include <memory>
 #include <sstream>
 
+#include "bounded_read.h"
 #include "relight/baker/photometric_file.h"
 #include "relight/baker/scene.h"
 
@@ -211,21 +212,18 @@ Lid MakeLid(PhotometricTable table) {
 Lid LoadLid(const std::string& path) { return MakeLid(LoadPhotometricFile(path)); }
 
 PhotometricTable LoadPhotometricFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw SceneError(path, 0, std::string("cannot read the photometric file: ") +
-                                  std::strerror(errno));
+  std::string text, why;
+  if (!ReadBoundedFile(path, kMaxPhotometricFileBytes, &text, &why)) {
+    throw SceneError(path, 0, "cannot read the photometric file: " + why);
   }
-  std::ostringstream text;
-  text << in.rdbuf();
   std::string ext;
   const size_t dot = path.find_last_of('.');
   if (dot != std::string::npos && path.find('/', dot) == std::string::npos) {
     ext = path.substr(dot + 1);
     for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
   }
-  if (ext == "ies") return ParseIes(text.str(), path);
-  if (ext == "ldt") return ParseEulumdat(text.str(), path);
+  if (ext == "ies") return ParseIes(text, path);
+  if (ext == "ldt") return ParseEulumdat(text, path);
   throw SceneError(path, 0,
                    "unknown photometric file type '." + ext + "' (expected .ies or .ldt)");
 }

@@ -107,6 +107,14 @@ int NumberStream::Integer(const std::string& what, int lo, int hi) {
   return static_cast<int>(v);
 }
 
+void NumberStream::Require(size_t count, const std::string& what, int count_line) const {
+  if (remaining() >= count) return;
+  // Named at the end, where a truncated file's problem is, with the count's line.
+  Fail(last_line_, what + " on line " + std::to_string(count_line) + " declares " +
+                       std::to_string(count) + " values, but the file ends after " +
+                       std::to_string(remaining()) + " (truncated, or is a count wrong?)");
+}
+
 void NumberStream::ExpectEnd(const std::string& what_came_before) {
   if (AtEnd()) return;
   Fail(tokens_[next_].line, std::to_string(remaining()) + " unexpected value(s) from '" +

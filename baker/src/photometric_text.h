@@ -20,7 +20,9 @@ std::string Fmt(double v);
 bool ParseNumber(const std::string& s, bool decimal_comma, double* out);
 
 // Numbers separated by blanks (and by commas unless decimal_comma), over
-// lines [first_line, end) of a file, 0-based.
+// lines [first_line, end) of a file, 0-based. Memory is a small multiple of
+// the text's size, which the callers bound (kMaxPhotometricFileBytes,
+// bounded_read.h); no count in the text sizes anything here.
 class NumberStream {
  public:
   NumberStream(const std::vector<std::string>& lines, size_t first_line, std::string path,
@@ -38,6 +40,11 @@ class NumberStream {
   int Integer(const std::string& what, int lo, int hi);
   // Anything left over is an error naming what the counts said.
   void ExpectEnd(const std::string& what_came_before);
+  // Before sizing anything from counts a file declares: at least `count`
+  // values must follow, else "file:<last line>: <what> on line <count_line>
+  // declares N values, but the file ends after M ...". Cheap (the tokens are already split), so a header
+  // claiming 10000 x 10000 angles fails here instead of in the allocator.
+  void Require(size_t count, const std::string& what, int count_line) const;
 
   [[noreturn]] void Fail(int line, const std::string& what) const;
 

@@ -68,6 +68,9 @@ ReferenceResult ComputeReference(const BakerCore& core,
                                 std::to_string(scene.luminaires.size()) + " luminaires");
   }
   const size_t lums = scene.luminaires.size();
+  if (lums == 0) {  // Eigen would be handed n x 0 matrices
+    throw SceneError(scene.path, 0, "the scene has no luminaires: no light to compute a reference for");
+  }
   const auto n = static_cast<Eigen::Index>(mesh.patch_count());
   std::vector<FixtureFrame> frames;
   std::vector<const Lid*> lids;

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <utility>
 
+#include "bounded_read.h"
 #include "lid_toml.h"
 #include "obj_loader.h"
 #include "polygon_check.h"
@@ -59,7 +60,10 @@ class SceneReader {
     // File order, so surface indices follow the text (each object's faces stay together).
     std::stable_sort(surfaces_.begin(), surfaces_.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (auto& entry : surfaces_) scene.surfaces.push_back(std::move(entry.second));
+    for (auto& entry : surfaces_) {
+      entry.second.line = entry.first;
+      scene.surfaces.push_back(std::move(entry.second));
+    }
     for (const toml::table* t : TablesOf("luminaire")) {
       scene.luminaires.push_back(ReadLuminaire(*t));
     }
@@ -312,10 +316,11 @@ class SceneReader {
     if (f.Has("material") || f.Has("reflectance")) override_colour = ReadColour(f);
 
     const std::string obj_path = file.front() == '/' ? file : FolderOf(path_) + file;
-    if (!std::ifstream(obj_path)) {
-      f.Fail(f.Required("file"), "cannot open OBJ file '" + obj_path + "'");
+    std::string obj_text, why;
+    if (!ReadBoundedFile(obj_path, kMaxMeshFileBytes, &obj_text, &why)) {
+      f.Fail(f.Required("file"), "cannot open OBJ file: " + why);
     }
-    const ObjModel model = LoadObj(obj_path, !override_colour.has_value());
+    const ObjModel model = ParseObj(obj_text, obj_path, !override_colour.has_value());
     for (const ObjFace& face : model.faces) {
       Surface surface;
       surface.name = file + ":" + std::to_string(face.line);
@@ -456,11 +461,10 @@ class SceneReader {
 }  // namespace
 
 Scene LoadScene(const std::string& toml_path) {
-  std::ifstream in(toml_path, std::ios::binary);
-  if (!in) throw SceneError(toml_path, 0, "cannot open scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  const std::string document = text.str();
+  std::string document, why;
+  if (!ReadBoundedFile(toml_path, kMaxSceneFileBytes, &document, &why)) {
+    throw SceneError(toml_path, 0, "cannot open scene file: " + why);
+  }
   toml::table root;
   try {
     root = toml::parse(std::string_view(document), std::string_view(toml_path));

@@ -20,6 +20,7 @@
 #include "frame_pipeline.h"
 #include "emitter_args.h"
 #include "replay_frames.h"
+#include "replay_plan.h"
 #include "set_args.h"
 
 namespace {
@@ -145,7 +146,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.001, 1e7));
   app.add_option("--replay", replay_path,
                  "replay script of timed settings ('TIME_S FIXTURE.PARAM=VALUE ...' per line): one frame per 1/fps seconds");
-  app.add_option("--fps", fps, "frames per second of script time for --replay")->capture_default_str()->check(CLI::Range(0.1, 240.0));
+  app.add_option("--fps", fps, "frames per second of script time for --replay")->capture_default_str()->check(CLI::Range(relight::cli::kMinReplayFps, relight::cli::kMaxReplayFps));
   app.add_option("--sheet", sheet_path, "with --replay: also write all frames, half size, tiled 4 per row into this PNG");
   app.add_flag("--list", list, "print the bake's luminaires and their default settings, and its surfaces (for --emitter), then exit");
   app.add_option("--aim-at-pixel", aim_pixel,

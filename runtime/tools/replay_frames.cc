@@ -9,6 +9,7 @@
 #include "relight/hal/replay_source.h"
 #include "relight/render/osmesa_frame.h"
 #include "contact_sheet.h"
+#include "replay_plan.h"
 #include "set_args.h"
 
 namespace relight::cli {
@@ -35,8 +36,14 @@ int RenderReplay(Engine& engine, const std::string& script_path, double fps, con
     std::fprintf(stderr, "relight-render: error: %s\n", st.ToString().c_str());
     return 2;
   }
-  const int64_t frame_us = std::llround(1e6 / fps);
-  const int frames = static_cast<int>(source.duration_us() / frame_us) + 1;
+  ReplayPlan plan;
+  std::string plan_error;
+  if (!PlanReplayFrames(source.duration_us(), fps, &plan, &plan_error)) {
+    std::fprintf(stderr, "relight-render: error: %s: %s\n", script_path.c_str(), plan_error.c_str());
+    return 2;
+  }
+  const int64_t frame_us = plan.frame_us;
+  const int frames = static_cast<int>(plan.frames);  // <= kMaxReplayFrames
   std::vector<ParamChange> changes(256);
   ContactSheetBuilder sheet_builder(sheet.width, sheet.height);
   const bool tty = isatty(STDOUT_FILENO) != 0;

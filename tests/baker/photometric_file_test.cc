@@ -159,7 +159,31 @@ TEST(PhotometricFixtures, OtherBadInputIsAClearError) {
                true, "horizontal angles run from 0 to 45");
   expect_error("IESNA:LM-63-2002\nTILT=NONE\n1 1000 0 3 1 1 2 0 0 0\n", true, "candela multiplier must be > 0");
   expect_error("IESNA:LM-63-2002\nTILT=\n", true, "TILT= has no value");
-  expect_error("IESNA:LM-63-2002\nTILT=INCLUDE\n1 2 0 90 1\n", true, "TILT multiplying factor 2 of 2");
+  expect_error("IESNA:LM-63-2002\nTILT=INCLUDE\n1 2 0 90 1\n", true,
+               "TILT angle count 2 (angles and factors) on line 3 declares 4 values, but the file "
+               "ends after 3");
+  // Issue 17: counts are bounded, and checked against the values present,
+  // before anything is sized from them.
+  expect_error("IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 10001 1 1 2 0 0 0\n", true,
+               "number of vertical angles (an integer 1..10000), got 10001");
+  expect_error("IESNA:LM-63-2002\nTILT=INCLUDE\n1 10000 0 90 1 1\n", true,
+               "TILT angle count 10000 (angles and factors) on line 3 declares 20000 values");
+  {
+    std::string big = "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 2000 1000 1 2 0 0 0\n1 1 5\n";
+    char buf[32];
+    for (int i = 0; i < 2000; ++i) {
+      std::snprintf(buf, sizeof buf, "%.10g ", i * 0.09);
+      big += buf;
+    }
+    for (int i = 0; i < 1000; ++i) {
+      std::snprintf(buf, sizeof buf, "%.10g ", i * 360.0 / 999);
+      big += buf;
+    }
+    expect_error(big, true,
+                 "x.ies:3: 2000 vertical x 1000 horizontal angles make 2000000 candela values, more "
+                 "than the limit of 1000000");
+  }
+  expect_error("company\n1\n2\n10001\n", false, "number of C planes Mc (an integer 1..10000)");
   expect_error("IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 3.5 1 1 2 0 0 0\n", true,
                "number of vertical angles (an integer");
   expect_error("company\n1\n", false, "symmetry indicator Isym (0-4) on line 3, but the file ends");

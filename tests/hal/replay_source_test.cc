@@ -101,6 +101,22 @@ TEST(ReplayScript, ErrorsNameFileAndLine) {
   EXPECT_NE(st.message().find("roll must be in -720..720 degrees"), std::string::npos) << st.message();
 }
 
+// Issue 17: a line a megabyte long is refused by its length, at once.
+TEST(ReplayScript, OverlongLineIsAnErrorNamingItsLength) {
+  std::vector<ParamChange> changes;
+  std::string line = "0";
+  while (line.size() < (1u << 20)) line += " a.pan=1";
+  const Status st = ParseReplayScript("0 a.pan=1\n" + line + "\n", "show.replay", &changes);
+  EXPECT_EQ(st.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(st.message().find("show.replay:2: line is 1048577 bytes, more than the limit of 4096"),
+            std::string::npos)
+      << st.message();
+  // At the limit it still reads.
+  line = "0 a.pan=1";
+  while (line.size() + 8 <= kMaxReplayLineBytes) line += " a.pan=1";
+  EXPECT_TRUE(ParseReplayScript(line + "\n", "s", &changes).ok());
+}
+
 TEST(ReplaySource, PollsDueChangesAndKeepsTheRestQueued) {
   const std::string path = ::testing::TempDir() + "/replay_source_test.replay";
   {

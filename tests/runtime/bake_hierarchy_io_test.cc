@@ -166,6 +166,29 @@ TEST_F(BakeHierarchyIoTest, ReaderNamesTheSectionAndTheOffendingIndex) {
                 "section LINK: 7 links need 228 bytes, the section has 229");
 }
 
+// Issue 17: each factor is at most 1 by its format, but what a receiver
+// gathers (its links and its ancestors') must be a form factor sum too
+// (<= 2), or the fixed-point emitter solve's gathers are not provably safe.
+TEST_F(BakeHierarchyIoTest, ReceiverFormFactorSumsAreBounded) {
+  // Links 0, 2, 3 and 6 all send to leaf 6: four factors of 1 are 4.
+  ExpectCorrupt(EditArray<uint32_t>(file_, kLink, kFqpAt, kLinks, 1,
+                                    [](auto* v) { (*v)[0] = (*v)[2] = (*v)[3] = (*v)[6] = UINT32_MAX; }),
+                "section LINK: node 6: its links and its ancestors' gather form factors summing to "
+                "3.99");
+  // Node 0 gathers links 0 and 1 (2 - 2^-31: allowed); its child 1 gathers
+  // them again with its own link 2.
+  ExpectCorrupt(EditArray<uint32_t>(file_, kLink, kFpqAt, kLinks, 1,
+                                    [](auto* v) { (*v)[0] = (*v)[1] = (*v)[2] = UINT32_MAX; }),
+                "section LINK: node 1: its links and its ancestors' gather form factors summing to "
+                "2.99");
+  // One factor of 1 (2^32 - 1), alone on its receiver, is a valid bake.
+  const Bytes one = EditArray<uint32_t>(file_, kLink, kFqpAt, kLinks, 1, [](auto* v) {
+    (*v)[0] = UINT32_MAX, (*v)[2] = (*v)[3] = (*v)[6] = 1;
+  });
+  Bake out;
+  EXPECT_TRUE(ParseBake(one.data(), one.size(), &out).ok());
+}
+
 // Node 2 keeps children 3 and 4 only; the areas still add up.
 void DropLastChildOfNode2(BakeHierarchy* h) {
   h->node_child_count[2] = 2;

@@ -156,8 +156,10 @@ inline void AddHierarchy(uint32_t seed, Bake* b) {
     h.link_p.push_back(p);
     h.link_q.push_back(q);
     const bool zero_pq = p == 2 && q == 7;
-    h.link_f_pq.push_back(zero_pq ? 0 : RandomInt<uint32_t>(&rng, 1, UINT32_MAX));
-    h.link_f_qp.push_back(RandomInt<uint32_t>(&rng, 1, UINT32_MAX));
+    // At most 1/8 each: what a node and its ancestors gather sums to <= 1
+    // (bake_check_hierarchy.cc); node 6 gathers from 4 links.
+    h.link_f_pq.push_back(zero_pq ? 0 : RandomInt<uint32_t>(&rng, 1, UINT32_MAX / 8));
+    h.link_f_qp.push_back(RandomInt<uint32_t>(&rng, 1, UINT32_MAX / 8));
     for (int a = 0; a < 2; ++a) {
       const bool inner_p = h.node_child_count[p] != 0 && !zero_pq;
       h.link_g_pq.push_back(inner_p ? RandomInt<int32_t>(&rng, INT32_MIN, INT32_MAX) : 0);

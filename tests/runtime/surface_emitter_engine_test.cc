@@ -108,7 +108,16 @@ Bake BoxBake(bool store_hierarchy) {
   baker::BakeOptions options;
   options.solver = baker::SolverKind::kHierarchical;
   options.store_hierarchy = store_hierarchy;
-  return baker::Baker(baker::test_scenes::ClosedBox(0.125, {0.6, 0.5, 0.4}), options).Bake();
+  baker::Scene scene = baker::test_scenes::ClosedBox(0.125, {0.6, 0.5, 0.4});
+  if (!store_hierarchy) {
+    // Without links for emitters, a bake needs a luminaire (else nothing to bake).
+    baker::Luminaire lamp;
+    lamp.name = "lamp";
+    lamp.position = {0.5, 0.5, 0.9};
+    lamp.sh_degree = 1;
+    scene.luminaires = {lamp};
+  }
+  return baker::Baker(scene, options).Bake();
 }
 
 const std::vector<Vec3> kBoxCeilingEmitter = {{0.3, 0.3, 1}, {0.7, 0.32, 1}, {0.6, 0.7, 1}};

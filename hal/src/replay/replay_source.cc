@@ -19,6 +19,11 @@ Status ParseReplayScript(const std::string& text, const std::string& where, std:
   int64_t last_us = 0;
   while (std::getline(lines, line)) {
     ++line_no;
+    if (line.size() > kMaxReplayLineBytes) {
+      return Status(StatusCode::kInvalidArgument,
+                    where + ":" + std::to_string(line_no) + ": line is " + std::to_string(line.size()) +
+                        " bytes, more than the limit of " + std::to_string(kMaxReplayLineBytes));
+    }
     if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
     std::istringstream words(line);
     std::string time_text;

@@ -2,6 +2,7 @@
 // LINK): every index in range and the trees well formed, so a run-time
 // solve can walk nodes and links without a single bounds check of its own.
 #include <cstddef>
+#include <vector>
 
 #include "relight/bake/bake_check.h"
 #include "bake_format.h"
@@ -246,6 +247,33 @@ std::string CheckHierarchyLinks(const BakeHierarchy& h) {
                                       end.g[1], end.node,
                                       h.leaf(end.node) ? "is a leaf" : "gets a zero factor"));
       }
+    }
+  }
+  // Each factor is UQ0.32, so in [0, 1] by its format (2^32 - 1 stands for
+  // 1). What a receiver gathers matters: a leaf's irradiance sums f x B over
+  // its own links and its ancestors' (pushed down), and that sum F is a form
+  // factor sum, 1 in a closed room; the baker's sampled estimates reach
+  // ~1.06, so F <= 2 is required. Then a gather in the emitter solve
+  // (surface_emitter_solve.cc) sums at most 2^33 (F in UQ0.32) x 2^63 (B,
+  // int64) = 2^96 into Int128, whatever B is: safe by 2^31. Unchecked, F
+  // could be 2^28 links x 1 and B grow by that factor every sweep.
+  constexpr uint64_t kMaxGatherSumRaw = uint64_t{1} << 33;
+  std::vector<uint64_t> gathered(n, 0);  // own links first, <= 2^28 x 2^32
+  for (size_t i = 0; i < links; ++i) {
+    gathered[h.link_p[i]] += h.link_f_pq[i];
+    gathered[h.link_q[i]] += h.link_f_qp[i];
+  }
+  for (uint32_t k = 0; k < n; ++k) {  // parents come before children
+    if (h.node_parent[k] != kBakeNoIndex && gathered[k] <= kMaxGatherSumRaw) {
+      gathered[k] += gathered[h.node_parent[k]];  // both <= the bound: no wrap
+    }
+    if (gathered[k] > kMaxGatherSumRaw) {
+      // Printed without floating point (the runtime has none): whole.millionths.
+      const uint64_t millionths = ((gathered[k] & 0xFFFFFFFFu) * 1000000u) >> 32;
+      return NodeError(k, StrFormat("its links and its ancestors' gather form factors summing "
+                                    "to %llu.%06llu, more than 2 (UQ0.32 raw %llu)",
+                                    static_cast<ull>(gathered[k] >> 32),
+                                    static_cast<ull>(millionths), static_cast<ull>(gathered[k])));
     }
   }
   return "";

@@ -35,9 +35,12 @@ int64_t MulQ60(int64_t a, int64_t b) {
 template <typename Emit>
 void ForEachShQ60(const ShTables& tables, int degree, const int32_t dir_q30[3], Emit emit) {
   RELIGHT_CHECK(degree >= 0 && degree <= kMaxShDegree);
-  const int64_t x = static_cast<int64_t>(dir_q30[0]) << 30;
-  const int64_t y = static_cast<int64_t>(dir_q30[1]) << 30;
-  const int64_t z = static_cast<int64_t>(dir_q30[2]) << 30;
+  // Q30 -> Q60 by multiplying: a left shift of a negative value is undefined
+  // before C++20 (UBSan); |d| <= 2^31, so the product fits and has the same bits.
+  constexpr int64_t kQ30ToQ60 = int64_t{1} << 30;
+  const int64_t x = static_cast<int64_t>(dir_q30[0]) * kQ30ToQ60;
+  const int64_t y = static_cast<int64_t>(dir_q30[1]) * kQ30ToQ60;
+  const int64_t z = static_cast<int64_t>(dir_q30[2]) * kQ30ToQ60;
   int64_t c = kOneQ60, s = 0;  // C_m, S_m
   for (int m = 0; m <= degree; ++m) {
     if (m > 0) {

@@ -37,6 +37,7 @@ struct Surface {
   std::string name;               // "floor", "box tall/+x", "sofa.obj:12"
   std::vector<Vec3> corners;      // 3 or 4, planar, convex
   Rgb reflectance{0.5, 0.5, 0.5};  // diffuse, each in [0, 1)
+  int line = 0;                    // of its object in the scene file, for messages (0: unknown)
 };
 
 enum class LidKind { kIsotropic, kCosPower, kTable, kCGamma };

@@ -10,6 +10,7 @@
 // script is read and checked at Start(); an error names file:line.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,9 @@ class ReplaySource final : public InputSource {
   std::vector<ParamChange> changes_;
   size_t next_ = 0;
 };
+
+// A script line longer than this is an error, not a megabyte of items to parse.
+inline constexpr std::size_t kMaxReplayLineBytes = 4096;
 
 // Parses script text (for tests and for Start()). `where` names the source in errors.
 Status ParseReplayScript(const std::string& text, const std::string& where, std::vector<ParamChange>* out);
