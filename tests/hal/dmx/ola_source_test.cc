@@ -99,16 +99,16 @@ TEST(DmxOlaSource, EndToEndThroughOlad) {
   olad.Launch();
   ASSERT_TRUE(WaitFor([&] { Status st = source.Start(); return st.ok(); }, 10000)) << "olad did not come up";
   ASSERT_TRUE(WaitFor([&] { return source.connected(); }, 2000));
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // registration answered
 
   // Slots 1..9 zero; spot at 10: dimmer 0x1234, pan 0xABCD, tilt 0x01FF,
   // C 255 M 0 Y 128, wheel 0 (open), zoom 255, shutter 255, gobo 0; par at 30.
   std::string csv = "0,0,0,0,0,0,0,0,0,18,52,171,205,1,255,255,0,128,0,255,255,0";
   for (int slot = 23; slot < 30; ++slot) csv += ",0";
   csv += ",255,0,64,0";
-  Send(csv);
+  // A console sends continuously; resend until the registration is through.
   DmxFixtureValues spot, par;
-  ASSERT_TRUE(WaitFor([&] { return source.frames_received() > 0; }, 3000)) << "no frame from olad";
+  ASSERT_TRUE(WaitFor([&] { Send(csv); return WaitFor([&] { return source.frames_received() > 0; }, 200); }, 8000))
+      << "no frame from olad";
   ASSERT_TRUE(source.LatestValues(0, MonotonicUs(), &spot));
   ASSERT_TRUE(source.LatestValues(1, MonotonicUs(), &par));
   EXPECT_EQ(spot.pan16, 0xABCD);
@@ -131,12 +131,11 @@ TEST(DmxOlaSource, EndToEndThroughOlad) {
   EXPECT_EQ(held.dimmer.raw(), spot.dimmer.raw());                          // "hold" is the default
   olad.Launch();
   ASSERT_TRUE(WaitFor([&] { return source.connected(); }, 10000)) << "no reconnection";
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  Send("0,0,0,0,0,0,0,0,0,255,255,128,0,128,0");  // a short frame: ends at tilt fine
   ASSERT_TRUE(WaitFor([&] {
+    Send("0,0,0,0,0,0,0,0,0,255,255,128,0,128,0");  // a short frame: ends at tilt fine
     DmxFixtureValues v;
-    return source.LatestValues(0, MonotonicUs(), &v) && v.pan16 == 0x8000;
-  }, 3000));
+    return WaitFor([&] { return source.LatestValues(0, MonotonicUs(), &v) && v.pan16 == 0x8000; }, 200);
+  }, 8000));
   ASSERT_TRUE(source.LatestValues(0, MonotonicUs(), &spot));
   EXPECT_EQ(spot.tilt16, 0x8000);
   EXPECT_EQ(spot.dimmer.raw(), 32767);
