@@ -259,13 +259,16 @@ double MaxOverPeak(const std::vector<double>& got, const Eigen::VectorXd& want) 
 }
 
 TEST(StoredHierarchy, OnlyTheHierarchicalSolverStoresItAndNoHierarchyLeavesItOut) {
-  const Scene scene = test_scenes::ClosedBox(0.25, {0.5, 0.5, 0.5});
+  // Dense and --no-hierarchy bakes need a luminaire (a scene without one is
+  // an error unless the bake stores its links for run-time emitters).
+  const Scene lit = CornellWithLeanTo();
   BakeOptions dense;
   dense.solver = SolverKind::kDense;
-  EXPECT_FALSE(Baker(scene, dense).Bake().hierarchy.has_value());
+  EXPECT_FALSE(Baker(lit, dense).Bake().hierarchy.has_value());
   BakeOptions without = Hierarchical();
   without.store_hierarchy = false;
-  EXPECT_FALSE(Baker(scene, without).Bake().hierarchy.has_value());
+  EXPECT_FALSE(Baker(lit, without).Bake().hierarchy.has_value());
+  const Scene scene = test_scenes::ClosedBox(0.25, {0.5, 0.5, 0.5});
   Baker with(scene, Hierarchical());
   const relight::Bake bake = with.Bake();
   ASSERT_TRUE(bake.hierarchy.has_value());
