@@ -8,6 +8,7 @@
 
 #include "bake_bytes.h"
 #include "relight/bake/bake.h"
+#include "relight/bake/bake_limits.h"
 #include "relight/base/sh_index.h"
 
 namespace relight::bake_format {
@@ -75,45 +76,12 @@ inline TocEntry LoadTocEntry(const uint8_t* p) {
   return e;
 }
 
-// --- Plausibility limits: a hostile header cannot ask for more than these.
-inline constexpr uint32_t kMaxNameBytes = 255;
-inline constexpr uint32_t kMaxVertices = 1u << 26;
-inline constexpr uint32_t kMaxTriangles = 1u << 27;
-inline constexpr uint32_t kMaxSurfaces = 1u << 16;
-inline constexpr uint32_t kMaxGrids = 64;
-inline constexpr uint32_t kMaxGridPoints = 1u << 24;  // per grid
-inline constexpr uint32_t kMaxLuminaires = 256;
-inline constexpr uint32_t kMinLidSamples = 3;
-inline constexpr uint32_t kMaxLidSamples = 65537;
-inline constexpr int64_t kMaxCandelaRaw = int64_t{1} << 47;  // 2^31 cd in Q48.16
-// A (C, gamma) table: planes 0..360 and gammas, and values in all.
-inline constexpr uint32_t kMinLidPlanes = 3;
-inline constexpr uint32_t kMaxLidPlanes = 1441;
-inline constexpr uint32_t kMinLidGammas = 2;
-inline constexpr uint32_t kMaxLidGammas = 1441;
-inline constexpr uint64_t kMaxLidTableValues = uint64_t{1} << 20;
-inline constexpr int64_t kMaxShCoefficientRaw = int64_t{1} << 50;  // |c| <= 2^34 cd in Q48.16
-inline constexpr int32_t kMaxTurnRaw = 360 << 16;   // yaw, roll: [-360, 360] degrees
-inline constexpr int32_t kMaxPanRangeRaw = 720 << 16;
-inline constexpr int32_t kMaxTiltRangeRaw = 360 << 16;
-inline constexpr int32_t kMinScaleExponent = -128;
-inline constexpr int32_t kMaxScaleExponent = 127;
-inline constexpr int32_t kScaleMantissaMin = int32_t{1} << 29;
-inline constexpr int32_t kScaleMantissaEnd = int32_t{1} << 30;
-// Q1.14 unit vectors: |v|^2 (Q2.28) within 2^28 +- 2^22, i.e. |v| = 1 +- 0.8 %.
-inline constexpr int64_t kUnitSquared = int64_t{1} << 28;
-inline constexpr int64_t kUnitSquaredTolerance = int64_t{1} << 22;
+// --- Plausibility limits: relight/bake/bake_limits.h.
 // zstd emits at best one 4-byte RLE block per 128 KiB (ratio 32768); twice
 // that is a safe bound on what an honest frame can expand to.
 inline constexpr uint64_t kMaxZstdExpansion = 65536;
 inline constexpr uint32_t kMaxSections =
     2 + kMaxGrids + kMaxLuminaires * (1 + 2 * (1 + kMaxGrids)) + 2;
-// Hierarchy: an inner node has at least 2 children and a leaf at least one
-// triangle, so there are fewer than 2 T nodes.
-inline constexpr uint32_t kMinNodeCorners = 3;
-inline constexpr uint32_t kMinChildren = 2;
-inline constexpr uint64_t kMaxNodeAreaRaw = uint64_t{1} << 56;  // Q32.32: 2^24 m^2
-inline constexpr uint32_t kMaxLinks = 1u << 28;
 
 // --- Payload sizes in bytes (docs/bake-format.md, one table per section).
 inline constexpr uint64_t kStringBytes = 4;  // u32 length; the bytes follow

@@ -8,13 +8,13 @@
 
 namespace relight {
 
-int32_t GainQ30(int16_t dimmer_q15, int16_t colour_q15) {
+Q1_30 GainQ30(Q1_15 dimmer, Q1_15 colour) {
   constexpr int64_t kFull = 32767;
-  const int64_t d = dimmer_q15 < 0 ? 0 : dimmer_q15;
-  const int64_t c = colour_q15 < 0 ? 0 : colour_q15;
+  const int64_t d = dimmer.raw() < 0 ? 0 : dimmer.raw();
+  const int64_t c = colour.raw() < 0 ? 0 : colour.raw();
   // d c / 32767^2 in Q2.30, rounded: at most 2^30 exactly.
   const int64_t den = kFull * kFull;
-  return static_cast<int32_t>((d * c * kUnityGainQ30 + den / 2) / den);
+  return Q1_30::FromRaw(static_cast<int32_t>((d * c * kUnityGainQ30 + den / 2) / den));
 }
 
 void MixLuminairesQ12(const MixSource* sources, uint32_t source_count, uint32_t receiver_count,
@@ -28,7 +28,7 @@ void MixLuminairesQ12(const MixSource* sources, uint32_t source_count, uint32_t 
     for (uint32_t i = 0; i < 3 * n; ++i) scratch[i] = 0;
     for (uint32_t l = 0; l < source_count; ++l) {
       const MixSource& s = sources[l];
-      const int64_t g[3] = {s.gain_q30[0], s.gain_q30[1], s.gain_q30[2]};
+      const int64_t g[3] = {s.gain[0].raw(), s.gain[1].raw(), s.gain[2].raw()};
       if ((g[0] | g[1] | g[2]) == 0) continue;
       const int32_t* a = s.a + base;
       const int32_t* b = s.b != nullptr ? s.b + base : nullptr;

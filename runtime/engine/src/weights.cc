@@ -21,14 +21,19 @@ void BeamAxisQ30(Mounting mounting, Q16_16 pan_deg, Q16_16 tilt_deg, int32_t axi
   axis_q30[2] = mounting == Mounting::kStanding ? cos_t.raw() : -cos_t.raw();
 }
 
+int64_t SigmaDampedQ16(int degree, int l, int64_t value_q16) {
+  // Q48.16 x Q1.30 in 128 bits (< 2^94), back to Q48.16. Dobashi Eq. 12-13.
+  const Int128 p = static_cast<Int128>(value_q16) * SigmaQ30(degree, l).raw();
+  return RoundShiftSat64(p, -30);
+}
+
 Status DampedLegendreWeightsQ16(int degree, bool use_sigma, const int64_t* candela_q16, int M,
                                 int32_t* table_scratch_q30, int64_t* damped_weights_q16) {
   RELIGHT_RETURN_IF_ERROR(BuildLegendreTableQ30(degree, M, table_scratch_q30));
   LegendreWeightsQ16(table_scratch_q30, degree, M, candela_q16, damped_weights_q16);  // Eq. 19
   if (use_sigma) {
-    for (int l = 0; l <= degree; ++l) {  // Dobashi Eq. 12-13
-      const Int128 p = static_cast<Int128>(damped_weights_q16[l]) * SigmaQ30(degree, l).raw();
-      damped_weights_q16[l] = RoundShiftSat64(p, -30);
+    for (int l = 0; l <= degree; ++l) {
+      damped_weights_q16[l] = SigmaDampedQ16(degree, l, damped_weights_q16[l]);
     }
   }
   return Status::Ok();

@@ -22,6 +22,13 @@ inline constexpr int kMaxRecombineShift = 62;
 //   hanging (sin t cos p, sin t sin p, -cos t), standing (..., +cos t).
 void BeamAxisQ30(Mounting mounting, Q16_16 pan_deg, Q16_16 tilt_deg, int32_t axis_q30[3]);
 
+// sigma(N, l) x value (Dobashi Eq. 12-13): the one sigma-factor damping,
+// of a Legendre weight w_l or of an SH coefficient of band l alike.
+// Scaling and overflow: Q48.16 in and out; the product with sigma (Q1.30,
+// 0..1) is formed in 128 bits (< 2^94) and rounded once (halves up), so the
+// result never exceeds |value| and cannot overflow.
+int64_t SigmaDampedQ16(int degree, int l, int64_t value_q16);
+
 // sigma(N, l) w_l (or w_l alone when !use_sigma), l = 0..degree, Q48.16 cd,
 // from the LID's M+1 samples (Dobashi Eq. 12-13, 19). Done once at Open.
 // table_scratch_q30 holds (degree+1)*(M+1) entries.

@@ -208,6 +208,12 @@ struct BakeSectionSize {
 Status WriteBake(const Bake& bake, const std::string& path,
                  std::vector<BakeSectionSize>* sizes = nullptr);
 
+// Checks a Bake in memory against every rule ReadBake enforces on a file
+// (bake_check.h, limits in bake_limits.h): WriteBake and Engine::Open run it.
+// Returns kOk or kInvalidArgument ("bake: <part>: <what and where>").
+// Thread-safe (reads its argument only).
+Status ValidateBake(const Bake& bake);
+
 // Reads and fully validates a bake: sizes, checksums, counts, index ranges,
 // degrees, scales. Returns kOk, kNotFound, kIoError, kCorrupt (what and
 // where), kUnsupported (newer version). `out` is only written on success.

@@ -70,7 +70,8 @@ class Engine {
   // paper's Eq. 21) updates the Legendre weights by its increment alone and
   // the exact direct term reads the new sample; the luminaire is rebuilt at
   // the next Update(). No allocation. kInvalidArgument for a bad index,
-  // kOutOfRange for candela outside [0, 2^24), kUnsupported for a LID with
+  // kOutOfRange for candela outside [0, 2^31] (bake_limits.h kMaxCandelaRaw,
+  // the file format's own bound), kUnsupported for a LID with
   // C planes (its SH coefficients come from the bake).
   Status SetLidSample(int luminaire, int k, Q48_16 candela);
   // The LID becomes the polyline through `count` control points (gamma from

@@ -1,0 +1,77 @@
+// One luminaire at run time: its fixture state, its LID prepared for the
+// kernels (Legendre weights, or a (C, gamma) table and SH coefficients), and
+// its caches per receiver set. Set up once in Engine::Open (all buffers sized
+// from the bake there); edited and recomputed without allocating.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "lid_table.h"
+#include "relight/bake/bake.h"
+#include "relight/base/fixed.h"
+#include "relight/base/sh_index.h"
+#include "relight/base/status.h"
+#include "relight/engine/engine.h"
+#include "relight/engine/sh_eval.h"
+#include "relight/engine/sh_rotation.h"
+
+namespace relight {
+
+// One receiver set's cache, LightQ12, 3 per receiver, at dimmer 1 and white.
+struct SetCache {
+  std::vector<int32_t> light;   // vertices: direct + indirect; grids: indirect
+  std::vector<int32_t> direct;  // grids of kExactDirect luminaires
+};
+
+struct LuminaireRuntime {
+  FixtureState state;
+  bool dirty = true;
+  int degree = 0;
+  int lid_m = 0;
+  int64_t damped_weights_q16[kMaxShDegree + 1] = {};
+  // Beam editing (Dobashi 4.1): the undamped weights w_l and the f_l table
+  // of Eq. 20 that Eq. 21 updates them with.
+  int64_t weights_q16[kMaxShDegree + 1] = {};
+  std::vector<int32_t> legendre_table_q30;
+  // A LID that is not axisymmetric: its (C, gamma) table for the direct term
+  // and its SH coefficients in the fixture frame, sigma applied (Q48.16).
+  bool has_table = false;
+  LidTableView table;
+  std::vector<int64_t> sh_local_q16;
+  std::vector<SetCache> sets;
+};
+
+// Scratch shared by every luminaire's recomputation, sized for the largest.
+struct CacheWorkspace {
+  ShTables sh;
+  std::unique_ptr<ShRotationTables> rotation;  // only with a (C, gamma) LID
+  std::vector<int32_t> rotation_q30;           // band matrices, kShRotationValues
+  std::vector<int64_t> alm_q30, coef_q16;      // per term
+  std::vector<int32_t> k;                      // per term and channel
+  std::vector<int64_t> scratch;                // recombine / mix blocks
+  std::vector<uint32_t> reflectance_over_pi_q32;  // 3 per vertex
+};
+
+// Degrees wrapped to (-180, 180].
+Q16_16 WrapDegrees(Q16_16 degrees);
+// Negative levels to 0.
+Q1_15 ClampUnit(Q1_15 v);
+
+// Sizes `work` (scratch for the largest receiver set and degree, rotation
+// tables if any LID has planes) and every luminaire: LID prepared (Legendre
+// table and damped weights, or the sigma-damped SH coefficients), default
+// state, caches. The bake must have passed ValidateBake. Returns
+// kInvalidArgument naming the luminaire if its LID cannot be expanded.
+Status SetUpLuminaires(const Bake& bake, std::vector<LuminaireRuntime>* lums,
+                       CacheWorkspace* work);
+
+// Dobashi 4.1: sample `sample` of an axisymmetric LID moves to candela_q16;
+// Eq. 21 updates the weights by its increment alone, O(N), and marks the
+// luminaire dirty; *changed tells whether the sample moved. Returns kUnsupported (LID has planes), kInvalidArgument
+// (sample index), kOutOfRange (candela outside [0, kMaxCandelaRaw]).
+Status EditLidSample(BakeLuminaire* b, LuminaireRuntime* l, int sample, int64_t candela_q16,
+                     bool* changed);
+
+}  // namespace relight
