@@ -9,8 +9,8 @@
 //   relight-replay-hash living_room.rlb fixtures/living_room.replay --fps 2 [--dump DIR]
 //
 // stdout: "frame I t=SECONDS luminance=HASH rgb8=HASH" per frame, then a
-// summary line; stderr: the engine's mean Update() time (for footprints,
-// not part of the comparison).
+// summary line; stderr: the engine's mean Update() time and the process's
+// resident memory (for footprints, not part of the comparison).
 #include <cerrno>
 #include <chrono>
 #include <cinttypes>
@@ -106,6 +106,20 @@ bool DumpFrame(const std::string& dir, int frame, const int32_t* luminance, cons
          WriteFile(dir + name + ".rgb8", rgb8, static_cast<size_t>(vertices) * 3);
 }
 
+// "VmRSS" or "VmHWM" (peak) from /proc/self/status, kB; -1 if unknown.
+long ProcStatusKb(const char* field) {
+  FILE* f = std::fopen("/proc/self/status", "r");
+  if (f == nullptr) return -1;
+  char line[256];
+  long kb = -1;
+  const size_t n = std::strlen(field);
+  while (std::fgets(line, sizeof line, f) != nullptr) {
+    if (std::strncmp(line, field, n) == 0 && line[n] == ':') kb = std::strtol(line + n + 1, nullptr, 10);
+  }
+  std::fclose(f);
+  return kb;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -119,6 +133,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "relight-replay-hash: error: %s\n", st.ToString().c_str());
     return 1;
   }
+  const long rss_after_open_kb = ProcStatusKb("VmRSS");
   for (size_t i = 0; i < args.emitters.size(); ++i) {
     std::string error;
     if (!relight::cli::ApplyEmitterText(engine, static_cast<int>(i), args.emitters[i], &error)) {
@@ -172,7 +187,9 @@ int main(int argc, char** argv) {
   std::printf("frames %d vertices %u luminance=%016" PRIx64 " rgb8=%016" PRIx64 "\n", frames, vertices,
               all_luminance, all_rgb8);
   const double update_us = std::chrono::duration<double, std::micro>(update_time).count();
-  std::fprintf(stderr, "relight-replay-hash: engine Update() %.1f us/frame mean over %d frames\n",
-               update_us / frames, frames);
+  std::fprintf(stderr,
+               "relight-replay-hash: engine Update() %.1f us/frame mean over %d frames; RSS %ld kB after Open, "
+               "%ld kB at the end, peak %ld kB\n",
+               update_us / frames, frames, rss_after_open_kb, ProcStatusKb("VmRSS"), ProcStatusKb("VmHWM"));
   return 0;
 }
