@@ -3,6 +3,8 @@
 // extension to int64.
 #include "recombine_avx2.h"
 
+#include <cstdlib>
+
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #include <immintrin.h>
 #define RELIGHT_HAVE_AVX2_PATH 1
@@ -12,8 +14,17 @@ namespace relight {
 
 #ifdef RELIGHT_HAVE_AVX2_PATH
 
+namespace {
+bool ForceScalarFromEnvironment() {
+  const char* v = std::getenv("RELIGHT_FORCE_SCALAR");
+  return v != nullptr && v[0] != '\0' && !(v[0] == '0' && v[1] == '\0');
+}
+}  // namespace
+
+// RELIGHT_FORCE_SCALAR=1 in the environment keeps RecombineQ12 on its scalar
+// path, so both paths can be compared on one machine (relight-replay-hash).
 bool CpuHasAvx2() {
-  static const bool has = __builtin_cpu_supports("avx2");
+  static const bool has = __builtin_cpu_supports("avx2") && !ForceScalarFromEnvironment();
   return has;
 }
 
