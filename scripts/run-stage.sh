@@ -13,9 +13,15 @@
 # Exit status: relightd's, or 2 when this relightd cannot replay DMX yet.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh
 BUILD_DIR=${RELIGHT_BUILD_DIR:-build}
 RELIGHTD="$BUILD_DIR"/runtime/daemon/relightd
+# A fresh machine: install and build everything (as run-demo.sh). A configured
+# build: bring just the two tools up to date.
+if [ -f "$BUILD_DIR"/CMakeCache.txt ]; then
+  cmake --build "$BUILD_DIR" -j"$(nproc)" --target relight-bake relightd > /dev/null
+else
+  scripts/setup.sh
+fi
 BAKE=out/stage.rlb
 FPS=${STAGE_FPS:-44}
 
