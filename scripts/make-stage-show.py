@@ -15,6 +15,11 @@ keep the previous frame's value of that universe (all 0 before the first).
 Only changed runs are written, so the file stays small.
 
 Usage: scripts/make-stage-show.py [PATCH] [-o OUT]   (defaults: the stage's)
+       scripts/make-stage-show.py --engine-replay OUT.replay [--seconds S]
+The second form writes the same show's looks (pan/tilt in degrees, dimmer,
+colour) as a relight replay script (fixtures/living_room.replay's format), so
+relight-replay-hash and relight-render can play it without DMX: the stage's
+48-head engine figures in docs/performance.md come from it.
 Deterministic: no randomness, no clock; the same patch gives the same file.
 Python 3.11 standard library only (tomllib).
 """
@@ -169,17 +174,38 @@ def changed_runs(prev, cur, max_gap=2):
     return [(a + 1, bytes(cur[a:b + 1])) for a, b in runs]
 
 
+def engine_replay(path, names, seconds):
+    """The show's looks as a replay script: every head at every DMX frame,
+    8 heads a line (the replay reader takes lines of up to 4096 bytes)."""
+    lines = ["# the stage show's looks at 44 frames/s (scripts/make-stage-show.py --engine-replay)"]
+    for k in range(int(seconds * FPS)):
+        t = k / FPS
+        sets = []
+        for name, truss, i, kind in names:
+            pan, tilt, dim, rgb, wheel, zoom = look(t, truss, i, kind == SPOT)
+            sets.append(f"{name}.pan={pan:.3f} {name}.tilt={tilt:.3f} {name}.dimmer={dim:.4f} "
+                        f"{name}.colour={rgb[0]:.4f},{rgb[1]:.4f},{rgb[2]:.4f}")
+        for j in range(0, len(sets), 8):
+            lines.append(f"{t:.6f} " + " ".join(sets[j:j + 8]))
+    with open(path, "w", encoding="ascii", newline="\n") as f:
+        f.write("\n".join(lines) + "\n")
+    print(f"{path}: {int(seconds * FPS)} frames, {len(names)} heads")
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     root = os.path.dirname(here)
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("patch", nargs="?", default=os.path.join(root, "fixtures", "stage.dmx.toml"))
     ap.add_argument("-o", "--output", default=os.path.join(root, "fixtures", "stage.dmxrec"))
+    ap.add_argument("--engine-replay", metavar="OUT", help="write the looks as a relight replay script instead")
+    ap.add_argument("--seconds", type=float, default=DURATION_S, help="with --engine-replay: how much of the show")
     args = ap.parse_args()
 
     with open(args.patch, "rb") as f:
         patch = tomllib.load(f)
     universes = {}
+    names = []
     for fx in patch.get("dmx_fixture", []):
         kind = (fx["type"], fx["mode"])
         if kind not in LAYOUT:
@@ -187,6 +213,10 @@ def main():
         truss = 0 if fx["name"].startswith("ds_") else 1
         i = int(fx["name"].rsplit("_", 1)[1]) - 1
         universes.setdefault(fx["universe"], []).append((truss, i, fx["address"], kind))
+        names.append((fx["name"], truss, i, kind))
+    if args.engine_replay:
+        engine_replay(args.engine_replay, names, args.seconds)
+        return
 
     frames = int(DURATION_S * FPS)
     prev = {u: [0] * 512 for u in universes}
