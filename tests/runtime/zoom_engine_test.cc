@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "relight/baker/baker.h"
 #include "relight/baker/beam_profile.h"
 #include "relight/engine/engine.h"
+#include "set_args.h"
 
 namespace relight {
 namespace {
@@ -192,6 +194,26 @@ TEST(Zoom, InBlackCostsNothingUntilLitAndNothingAllocates) {
   EXPECT_EQ(in_black, 0);
   EXPECT_EQ(lit, 1);
   EXPECT_EQ(g_allocations.load(), 0);
+}
+
+// relight-render --set, replay scripts and relightd's fader: NAME.zoom=DEG.
+TEST(Zoom, SetTextReachesTheEngine) {
+  Engine engine;
+  ASSERT_TRUE(engine.Open(SmallZoomBake().bake).ok());
+  std::string error;
+  ASSERT_TRUE(cli::ApplySetText(engine, "zoom.zoom=17.5", &error)) << error;
+  EXPECT_EQ(engine.state(0).zoom_deg.raw(), 17.5 * 65536);
+  ASSERT_TRUE(cli::ApplySetText(engine, "zoom.zoom=179", &error)) << error;
+  EXPECT_EQ(engine.state(0).zoom_deg.raw(), 50 << 16);  // clamped to the range
+  EXPECT_FALSE(cli::ApplySetText(engine, "plain.zoom=20", &error));
+  EXPECT_NE(error.find("plain.zoom"), std::string::npos) << error;
+  EXPECT_NE(error.find("no zoom"), std::string::npos) << error;
+  // An unchanged zoom (a fade's first step reports every parameter) is no change.
+  ParamChange same;
+  std::snprintf(same.fixture, sizeof same.fixture, "plain");
+  same.param = Param::kZoom;
+  same.value = 0;
+  EXPECT_TRUE(cli::ApplyChange(engine, same, &error)) << error;
 }
 
 }  // namespace

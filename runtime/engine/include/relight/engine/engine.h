@@ -62,8 +62,9 @@ class Engine {
   // (or the next lid_samples() / LID edit) the LID samples become the
   // profile at the new angle and the Legendre weights are recomputed from
   // them (Dobashi Eq. 19), which the exact direct term and the SH terms then
-  // use, as after a beam edit. Integer-only, no allocation. kInvalidArgument
-  // for a bad index, kUnsupported for a luminaire without a zoom.
+  // use, as after a beam edit (which a later zoom replaces: the samples are
+  // rebuilt from the bake's profile). Integer-only, no allocation.
+  // kInvalidArgument for a bad index, kUnsupported for a luminaire without a zoom.
   Status SetZoom(int luminaire, Q16_16 beam_angle_deg);
   // Console-style 16-bit pan and tilt (coarse << 8 | fine), spread over the
   // luminaire's pan and tilt ranges (bake.h), 32768 = home (0 degrees).
