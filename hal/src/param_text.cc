@@ -76,7 +76,7 @@ int ParseParamText(const std::string& text, int64_t time_us, ParamChange out[3],
 
   Param kind = Param::kDimmer;
   if (!ParamFromName(param, &kind)) {
-    return fail("unknown parameter '" + param + "' (pan, tilt, roll, dimmer, r, g, b, colour)");
+    return fail("unknown parameter '" + param + "' (pan, tilt, roll, zoom, dimmer, r, g, b, colour)");
   }
   bool percent = false;
   if (param == "dimmer" && !value.empty() && value.back() == '%') {
@@ -88,6 +88,9 @@ int ParseParamText(const std::string& text, int64_t time_us, ParamChange out[3],
   if (percent) v /= 100.0;
   out[0] = base;
   out[0].param = kind;
+  if (kind == Param::kZoom && !(v > 0 && v < 180)) {
+    return fail("zoom (the full beam angle) must be in (0, 180) degrees");
+  }
   if (IsAngle(kind)) {
     if (v < -720 || v > 720) return fail(param + " must be in -720..720 degrees");
     out[0].value = DegreesQ16(v);

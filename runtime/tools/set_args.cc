@@ -43,6 +43,9 @@ bool ApplyChange(Engine& engine, const ParamChange& change, std::string* error) 
     case Param::kGreen: st = engine.SetColour(index, s.rgb[0], level, s.rgb[2]); break;
     case Param::kBlue: st = engine.SetColour(index, s.rgb[0], s.rgb[1], level); break;
     case Param::kRoll: st = engine.SetRoll(index, angle); break;
+    // A fade's first step reports every parameter: an unchanged zoom is no
+    // change, even on a luminaire without one.
+    case Param::kZoom: st = angle == s.zoom_deg ? Status::Ok() : engine.SetZoom(index, angle); break;
   }
   if (!st.ok()) {
     *error = std::string(change.fixture) + "." + ParamName(change.param) + ": " + st.ToString();

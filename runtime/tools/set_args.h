@@ -11,11 +11,11 @@
 
 namespace relight::cli {
 
-// A --set argument as plain numbers (for the float64 baker): pan, tilt and
-// roll in degrees, levels 0..1; colour has three values, the rest one.
+// A --set argument as plain numbers (for the float64 baker): pan, tilt,
+// roll and zoom in degrees, levels 0..1; colour has three values, the rest one.
 struct SetArg {
   std::string fixture;
-  std::string param;  // pan | tilt | roll | dimmer | r | g | b | colour
+  std::string param;  // pan | tilt | roll | zoom | dimmer | r | g | b | colour
   std::vector<double> values;
 };
 bool ParseSetArg(const std::string& text, SetArg* out, std::string* error);

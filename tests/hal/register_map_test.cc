@@ -203,13 +203,15 @@ TEST(RegisterMap, ALayoutWithRollAndFineBytesChecksEncodesAndDecodes) {
   EXPECT_NEAR(std::abs(out[0].value - shown_pan), 630, 1);
   EXPECT_EQ(out[1].param, Param::kRoll);
   EXPECT_EQ(out[1].value, 45 << 16);
-  // Every parameter moving: dimmer, pan, tilt, roll, r, g, b, in that order.
+  // Every parameter the registers carry moving (all but zoom): dimmer, pan,
+  // tilt, roll, r, g, b, in that order.
   const uint16_t all[10] = {100, 1, 2, 3, 4, 5, 6, 7, 8, 1};
   n = map.DecodeChanges(0, before, all, 0, out);
-  ASSERT_EQ(n, static_cast<size_t>(kParamCount));
-  const Param order[kParamCount] = {Param::kDimmer, Param::kPan, Param::kTilt, Param::kRoll,
-                                    Param::kRed,    Param::kGreen, Param::kBlue};
-  for (int i = 0; i < kParamCount; ++i) EXPECT_EQ(out[i].param, order[i]) << i;
+  constexpr int kRegisterParams = 7;
+  ASSERT_EQ(n, static_cast<size_t>(kRegisterParams));
+  const Param order[kRegisterParams] = {Param::kDimmer, Param::kPan, Param::kTilt, Param::kRoll,
+                                        Param::kRed,    Param::kGreen, Param::kBlue};
+  for (int i = 0; i < kRegisterParams; ++i) EXPECT_EQ(out[i].param, order[i]) << i;
   EXPECT_EQ(out[1].value, AngleQ16FromRegister(0x0102, 630 << 16));
   EXPECT_EQ(out[2].value, AngleQ16FromRegister(0x0304, 265 << 16));
 }

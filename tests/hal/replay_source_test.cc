@@ -48,13 +48,22 @@ TEST(ParamText, AngleRangeErrorsSayWhichParameterAndTheUnit) {
     EXPECT_EQ(ParseParamText(text, 0, c, &error), 0) << text;
     EXPECT_EQ(error, "'" + text + "': " + param + " must be in -720..720 degrees");
   }
-  EXPECT_EQ(ParseParamText("spot1.zoom=1", 0, c, &error), 0);
-  EXPECT_NE(error.find("(pan, tilt, roll, dimmer, r, g, b, colour)"), std::string::npos) << error;
+  EXPECT_EQ(ParseParamText("spot1.iris=1", 0, c, &error), 0);
+  EXPECT_NE(error.find("(pan, tilt, roll, zoom, dimmer, r, g, b, colour)"), std::string::npos) << error;
+  for (const char* text : {"spot1.zoom=0", "spot1.zoom=180", "spot1.zoom=-20"}) {
+    EXPECT_EQ(ParseParamText(text, 0, c, &error), 0) << text;
+    EXPECT_EQ(error, "'" + std::string(text) + "': zoom (the full beam angle) must be in (0, 180) degrees");
+  }
+  ASSERT_EQ(ParseParamText("spot1.zoom=24.5", 0, c, &error), 1) << error;
+  EXPECT_EQ(c[0].param, Param::kZoom);
+  EXPECT_EQ(c[0].value, 24.5 * 65536);
+  EXPECT_TRUE(IsAngle(Param::kZoom));
+  EXPECT_STREQ(ParamName(Param::kZoom), "zoom");
 }
 
 TEST(ParamText, RejectsBadTextWithAMessage) {
   ParamChange c[3];
-  const char* bad[] = {"spot1", "spot1.pan", ".pan=3", "spot1.zoom=3", "spot1.pan=abc", "spot1.pan=1000",
+  const char* bad[] = {"spot1", "spot1.pan", ".pan=3", "spot1.iris=3", "spot1.pan=abc", "spot1.pan=1000",
                        "spot1.dimmer=1.5", "spot1.colour=1,2", "spot1.colour=1,0,0,0", "sp ot.pan=1",
                        "spot1.r=-0.1", "spot1.pan=nan"};
   for (const char* text : bad) {

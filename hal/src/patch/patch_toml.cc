@@ -116,7 +116,7 @@ Param ParseParamName(const Table& t, const char* key, const std::string& name) {
   Param param = Param::kDimmer;
   if (!ParamFromName(name, &param)) {
     t.Fail(t.Node(key),
-           std::string("'") + key + "' must be one of pan, tilt, roll, dimmer, r, g, b; got '" + name + "'");
+           std::string("'") + key + "' must be one of pan, tilt, roll, zoom, dimmer, r, g, b; got '" + name + "'");
   }
   return param;
 }

@@ -22,7 +22,7 @@ void Fader::Reset(int slot, const FixtureState& state) {
   Slot& s = slots_[static_cast<size_t>(slot)];
   const int32_t values[kParamCount] = {state.pan_deg.raw(), state.tilt_deg.raw(), state.dimmer.raw(),
                                        state.rgb[0].raw(),  state.rgb[1].raw(),  state.rgb[2].raw(),
-                                       state.roll_deg.raw()};  // in Param order
+                                       state.roll_deg.raw(), state.zoom_deg.raw()};  // in Param order
   for (int p = 0; p < kParamCount; ++p) {
     s.ramps[p] = Ramp();
     s.ramps[p].from = s.ramps[p].to = s.ramps[p].shown = values[p];
