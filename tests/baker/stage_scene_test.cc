@@ -1,8 +1,8 @@
 // fixtures/stage.toml (issue 12 item 5) is the theatre it claims to be: a
 // dark 12 x 10 x 6 m room, a riser with a calculation grid on it, light
-// flats, and 48 hanging heads on two trusses whose cos^n beams stand for
-// their QLC+ types (half-peak angle inside the type's lens range, the type's
-// lumens), checked numerically through Lid::Evaluate.
+// flats, and 48 hanging heads on two trusses whose beams are their QLC+
+// types' (zoom = the lens range, the type's lumens, beam angle at the range's
+// midpoint), checked numerically through Lid::Evaluate.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -106,8 +106,8 @@ TEST(StageScene, FortyEightHeadsOnTwoTrussesWithTheirTypesBeams) {
     EXPECT_LT(l.position[1], ymax);
     EXPECT_LT(l.position[2], t.corners[0][2]);
     EXPECT_GT(l.position[2], t.corners[0][2] - 0.5);
-    // The cos^n stand-in for the type: half-peak angle inside the lens range, the type's lumens.
-    ASSERT_EQ(l.lid.kind, LidKind::kCosPower);
+    // The type's beam: zoom over the lens range, half-peak angle at its midpoint, the type's lumens.
+    ASSERT_EQ(l.lid.kind, LidKind::kBeam);
     const bool spot = l.name.find("_spot_") != std::string::npos;
     const double lens_min = spot ? 12 : 11, lens_max = spot ? 36 : 58, lumens = spot ? 12700 : 3850;
     const double beam = BeamAngleDeg(l.lid);
@@ -115,6 +115,9 @@ TEST(StageScene, FortyEightHeadsOnTwoTrussesWithTheirTypesBeams) {
     EXPECT_LE(beam, lens_max);
     EXPECT_NEAR(beam, 0.5 * (lens_min + lens_max), 1.0) << "the lens range's midpoint";
     EXPECT_NEAR(FluxLm(l.lid), lumens, 0.02 * lumens);
+    EXPECT_EQ(l.lid.zoom_min_deg, lens_min);
+    EXPECT_EQ(l.lid.zoom_max_deg, lens_max);
+    EXPECT_EQ(l.sh_degree, 8);
     EXPECT_NEAR(l.pan_range_deg, 540, 1e-9);
     EXPECT_NEAR(l.tilt_range_deg, spot ? 268 : 232, 1e-9);  // the .qxf's <Focus TiltMax>
     spots += spot;
