@@ -17,7 +17,7 @@ Only changed runs are written, so the file stays small.
 Usage: scripts/make-stage-show.py [PATCH] [-o OUT]   (defaults: the stage's)
        scripts/make-stage-show.py --engine-replay OUT.replay [--seconds S]
 The second form writes the same show's looks (pan/tilt in degrees, dimmer,
-colour) as a relight replay script (fixtures/living_room.replay's format), so
+colour, zoom in degrees) as a relight replay script (fixtures/living_room.replay's format), so
 relight-replay-hash and relight-render can play it without DMX: the stage's
 48-head engine figures in docs/performance.md come from it.
 Deterministic: no randomness, no clock; the same patch gives the same file.
@@ -39,9 +39,9 @@ SPOT = ("Martin/Martin-MAC-Quantum-Profile.qxf", "Basic")
 WASH = ("Martin/Martin-MAC-Aura.qxf", "Standard Mode")
 LAYOUT = {
     SPOT: dict(footprint=19, shutter=0, dimmer=1, cyan=2, magenta=3, yellow=4, wheel=5, zoom=12,
-               pan=14, tilt=16, tilt_range=268),
+               pan=14, tilt=16, tilt_range=268, lens=(12, 36)),
     WASH: dict(footprint=14, shutter=0, dimmer=1, zoom=2, pan=3, tilt=5, wheel=8, red=9, green=10,
-               blue=11, white=12, tilt_range=232),
+               blue=11, white=12, tilt_range=232, lens=(11, 58)),
 }
 PAN_RANGE_DEG = 540
 SHUTTER_OPEN = 22          # open on both types (Quantum 20-49, Aura 20-24)
@@ -183,8 +183,10 @@ def engine_replay(path, names, seconds):
         sets = []
         for name, truss, i, kind in names:
             pan, tilt, dim, rgb, wheel, zoom = look(t, truss, i, kind == SPOT)
+            lo, hi = LAYOUT[kind]["lens"]
+            zoom_deg = hi - (hi - lo) * byte(zoom) / 255  # both zooms run big -> small
             sets.append(f"{name}.pan={pan:.3f} {name}.tilt={tilt:.3f} {name}.dimmer={dim:.4f} "
-                        f"{name}.colour={rgb[0]:.4f},{rgb[1]:.4f},{rgb[2]:.4f}")
+                        f"{name}.colour={rgb[0]:.4f},{rgb[1]:.4f},{rgb[2]:.4f} {name}.zoom={zoom_deg:.2f}")
         for j in range(0, len(sets), 8):
             lines.append(f"{t:.6f} " + " ".join(sets[j:j + 8]))
     with open(path, "w", encoding="ascii", newline="\n") as f:
