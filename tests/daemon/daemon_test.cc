@@ -112,15 +112,10 @@ TEST(Daemon, FadesRampLinearlyAndTheSquareCurveShapesTheDimmer) {
   rig.daemon.SetFrameObserver([&](const FrameInfo& f) {
     seen.push_back(rig.daemon.engine().state(0));
     if (f.frame == 1) {
-      ParamChange pan;
-      std::snprintf(pan.fixture, sizeof pan.fixture, "spot");
-      pan.param = Param::kPan;
-      pan.value = 100 << 16;
-      rig.mock->Inject(pan);
-      ParamChange dim = pan;
-      dim.param = Param::kDimmer;
-      dim.value = 16384;  // half: square law gives a quarter
-      rig.mock->Inject(dim);
+      // The mock is made from the patch: fixture 0 is the patch's first, "spot".
+      rig.mock->Inject(ParamChange::Angle(0, 0, Param::kPan, Q16_16::FromInt(100)));
+      // Half: square law gives a quarter.
+      rig.mock->Inject(ParamChange::Level(0, 0, Param::kDimmer, Q1_15::FromRaw(16384)));
     }
   });
   ASSERT_TRUE(RunToEnd(rig.daemon).ok());

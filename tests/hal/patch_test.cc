@@ -143,7 +143,7 @@ TEST(Patch, ErrorsNameFileLineAndWhatWasExpected) {
       {"[modbus_poller]\nmap = [ { register = 0, fixture = \"a\", param = \"r\" }, { register = 200, fixture = \"a\", "
        "param = \"g\" } ]\n",
        "p.toml:2", "125"},
-      {"[[gpio_button]]\nchip = \"gpiochip0\"\nline = 3\naction = \"preset\"\npreset = [\"a.zoom=1\"]\n", "p.toml:5",
+      {"[[gpio_button]]\nchip = \"gpiochip0\"\nline = 3\naction = \"preset\"\npreset = [\"a.iris=1\"]\n", "p.toml:5",
        "unknown parameter"},
       {"[[gpio_encoder]]\nchip = \"c\"\nline_a = 1\nline_b = 1\nfixture = \"a\"\n", "p.toml:4", "differ"},
       {"[[gpio_encoder]]\nchip = \"c\"\nline_a = 1\nline_b = 2\nfixture = \"a\"\nparam = \"zoom\"\n", "p.toml:6",

@@ -34,7 +34,7 @@
 #include "frame_pipeline.h"
 #include "frame_sink.h"
 #include "relight/engine/engine.h"
-#include "relight/control/fader.h"
+#include "relight/control/change_path.h"
 #include "relight/hal/input_source.h"
 #include "relight/hal/patch.h"
 #include "relight/hal/register_map.h"
