@@ -9,12 +9,17 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstdio>
+#include <fstream>
 #include <string>
 #include <sys/stat.h>
 #include <vector>
 
 #include "relight/control/change_path.h"
+#include "relight/control/engine_binding.h"
 #include "relight/engine/engine.h"
+#include "relight/base/console_value.h"
+#include "relight/hal/dmx/dmx_replay_source.h"
 #include "relight/hal/mock_source.h"
 #include "relight/hal/patch.h"
 #include "relight/hal/register_map.h"
@@ -23,6 +28,14 @@
 
 namespace relight::control {
 namespace {
+
+// The engine keeps angles in (-180, 180] degrees.
+Q16_16 Wrapped(Q16_16 deg) {
+  int64_t v = deg.raw() % (int64_t{360} << 16);
+  if (v > (int64_t{180} << 16)) v -= int64_t{360} << 16;
+  if (v <= -(int64_t{180} << 16)) v += int64_t{360} << 16;
+  return Q16_16::FromRaw(static_cast<int32_t>(v));
+}
 
 bool FileExists(const std::string& path) {
   struct stat st;
@@ -96,6 +109,83 @@ TEST(ChangePath, ARegisterWriteReachesTheEngineWithoutAllocating) {
     EXPECT_EQ(s.dimmer.raw(), hal::LevelQ15FromRegister16(static_cast<uint16_t>(last * 21)));
     EXPECT_EQ(s.rgb[1].raw(), hal::LevelQ15FromByte(static_cast<uint16_t>(last % 256)));
   }
+}
+
+// The same for DMX: frames of a recording decoded by the DMX decoder
+// (DmxReplaySource, which shares its frame -> change core with the OLA
+// source), three 16-bit moving spots patched to the bake's luminaires.
+TEST(ChangePath, ADmxFrameReachesTheEngineWithoutAllocating) {
+  const std::string bake = RELIGHT_TEST_HIER_BAKE;
+  if (!FileExists(bake)) GTEST_SKIP() << "no bake at " << bake << " (ctest's MakeLivingRoomHierBake makes it)";
+  Engine engine;
+  ASSERT_TRUE(engine.Open(bake).ok());
+  ASSERT_EQ(engine.luminaire_count(), 3);
+  // DMX fixture d (address 1 + 20 d) is luminaire 2 - d.
+  std::string patch_text;
+  for (int d = 0; d < 3; ++d) {
+    patch_text += "[[dmx_fixture]]\nname = \"" + engine.bake().luminaires[2 - d].name + "\"\ntype = \"" +
+                  RELIGHT_SOURCE_DIR "/fixtures/dmx/relight-test-spot.toml\"\nmode = \"16 bit\"\nuniverse = 1\n" +
+                  "address = " + std::to_string(1 + 20 * d) + "\n";
+  }
+  hal::DmxPatch dmx;
+  const Status parsed = hal::ParseDmxPatch(patch_text, "alloc_dmx.toml", &dmx);
+  ASSERT_TRUE(parsed.ok()) << parsed.message();
+  std::vector<std::string> names;
+  for (const hal::DmxFixturePatch& f : dmx.fixtures) names.push_back(f.name);
+  // Frame k: every spot moves (pan, tilt, dimmer, cyan), 44 frames/s.
+  const int kFrames = 2000;
+  const std::string rec_path = ::testing::TempDir() + "/alloc.dmxrec";
+  {
+    std::ofstream rec(rec_path);
+    for (int k = 0; k < kFrames; ++k) {
+      rec << (int64_t{k} * 22727) << " 1";
+      for (int d = 0; d < 3; ++d) {
+        char run[64];
+        const unsigned pan = (1000u + 97u * static_cast<unsigned>(k) + 5000u * d) & 0xFFFF;
+        const unsigned tilt = (60000u - 31u * static_cast<unsigned>(k)) & 0xFFFF;
+        std::snprintf(run, sizeof run, " %d=%04x%04x%04x%02x0000001fff", 1 + 20 * d, (k * 33) & 0xFFFF, pan, tilt,
+                      k % 256);
+        rec << run;
+      }
+      rec << "\n";
+    }
+  }
+  hal::DmxReplaySource source(std::move(dmx), rec_path);
+  ASSERT_TRUE(source.Start().ok());
+  hal::Patch none;  // no Modbus patch: every luminaire with defaults
+  ChangePath path;
+  ASSERT_TRUE(path.Bind(&engine, none.fixtures, nullptr).ok());
+  BoundInput input{&source, {}};
+  ASSERT_TRUE(BindNames(engine, names, "alloc_dmx.toml", &input.luminaire_of).ok());
+  EXPECT_EQ(input.luminaire_of, (std::vector<uint16_t>{2, 1, 0}));
+  (void)path.Poll(input, 0, 0);  // the first frame (its zoom is refused until the engine has SetZoom)
+  (void)path.Apply(0);
+  engine.Update();
+
+  g_allocations = 0;
+  g_count_allocations = true;
+  size_t applied = 0;
+  for (int k = 1; k < kFrames; ++k) {
+    const int64_t t_us = int64_t{k} * 22727;
+    (void)path.Poll(input, t_us, t_us);
+    applied += path.Apply(t_us);
+    engine.Update();
+  }
+  g_count_allocations = false;
+  EXPECT_EQ(g_allocations.load(), 0) << "heap allocations on the DMX per-change path";
+  EXPECT_GT(applied, size_t{kFrames} * 3 * 3);
+  EXPECT_TRUE(source.Finished());
+  const int k = kFrames - 1;
+  for (int d = 0; d < 3; ++d) {
+    const FixtureState s = engine.state(2 - d);
+    const unsigned pan = (1000u + 97u * static_cast<unsigned>(k) + 5000u * d) & 0xFFFF;
+    EXPECT_EQ(s.pan_deg, Wrapped(ConsoleToDegrees(static_cast<uint16_t>(pan), 540 << 16))) << d;
+    EXPECT_EQ(s.tilt_deg, Wrapped(ConsoleToDegrees(static_cast<uint16_t>((60000u - 31u * k) & 0xFFFF), 270 << 16)))
+        << d;
+    EXPECT_EQ(s.dimmer.raw(), static_cast<int>(((k * 33 & 0xFFFF) * 32767 + 32767) / 65535)) << d;
+    EXPECT_EQ(s.rgb[0].raw(), 32767 - static_cast<int>(((k % 256) * 257 * 32767 + 32767) / 65535)) << d;
+  }
+  std::remove(rec_path.c_str());
 }
 
 }  // namespace

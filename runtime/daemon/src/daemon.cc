@@ -8,6 +8,8 @@
 #include "relight/base/clock.h"
 #include "relight/base/log.h"
 #include "relight/control/engine_binding.h"
+#include "relight/hal/dmx/dmx_replay_source.h"
+#include "relight/hal/dmx/ola_source.h"
 #include "relight/hal/replay_source.h"
 #include "relight/hal/source_factory.h"
 
@@ -52,6 +54,9 @@ struct Daemon::Impl {
   control::ChangePath path;
   std::vector<std::unique_ptr<hal::InputSource>> patch_sources;  // replaced on reload
   std::unique_ptr<hal::ReplaySource> replay;
+  std::unique_ptr<hal::InputSource> dmx;      // DMX through olad, or a DMX replay; kept across patch reloads
+  std::vector<uint16_t> dmx_luminaires;       // DMX patch fixture -> engine luminaire
+  bool dmx_is_replay = false;
   std::vector<std::unique_ptr<hal::InputSource>> extra_sources;
   std::vector<control::BoundInput> inputs;  // every source with its index table; rebuilt when sources change
   std::vector<std::unique_ptr<FrameSink>> sinks;
@@ -72,7 +77,41 @@ struct Daemon::Impl {
     inputs.clear();
     for (const auto& s : patch_sources) inputs.push_back({s.get(), path.patch_luminaires()});
     if (replay) inputs.push_back({replay.get(), {}});
+    if (dmx) inputs.push_back({dmx.get(), dmx_luminaires});
     for (const auto& s : extra_sources) inputs.push_back({s.get(), path.patch_luminaires()});
+  }
+
+  // The finite scripts (replay, DMX replay) are all played out.
+  bool ScriptsFinished() const {
+    return (!replay || replay->Finished()) && (!dmx || !dmx_is_replay || dmx->Finished());
+  }
+
+  // The DMX patch: its fixture names bound to the bake's luminaires once,
+  // here; a name the bake lacks is an error naming the patch's file:line.
+  Status OpenDmx() {
+    hal::DmxPatch dmx_patch;
+    RELIGHT_RETURN_IF_ERROR(hal::LoadDmxPatch(config.dmx_patch_path, &dmx_patch));
+    if (dmx_patch.fixtures.size() > static_cast<size_t>(kMaxFixtures)) {
+      return Status(StatusCode::kInvalidArgument, config.dmx_patch_path + ": more than 65535 fixtures");
+    }
+    std::vector<uint16_t> luminaires;
+    for (const hal::DmxFixturePatch& f : dmx_patch.fixtures) {
+      std::vector<uint16_t> one;
+      RELIGHT_RETURN_IF_ERROR(control::BindNames(
+          engine, {f.name}, config.dmx_patch_path + ":" + std::to_string(f.line) + ": dmx_fixture", &one));
+      luminaires.push_back(one[0]);
+    }
+    dmx_luminaires = std::move(luminaires);
+    dmx_is_replay = !config.dmx_replay_path.empty();
+    if (dmx_is_replay) {
+      dmx = std::make_unique<hal::DmxReplaySource>(std::move(dmx_patch), config.dmx_replay_path);
+    } else {
+      hal::DmxOlaConfig ola;
+      ola.wait_for_olad = true;  // say so and keep trying: the console's olad may come later
+      dmx = std::make_unique<hal::DmxOlaSource>(std::move(dmx_patch), ola);
+    }
+    BindInputs();
+    return Status::Ok();
   }
 
   // Builds the map, fader and live sources of `p` (resolved). Does not start them.
@@ -222,8 +261,13 @@ Status Daemon::Open(const DaemonConfig& config) {
     m.replay = std::make_unique<hal::ReplaySource>(script, control::LuminaireNames(m.engine));
     m.BindInputs();
   }
-  if (config.exit_when_replay_done && !m.replay) {
-    return Status(StatusCode::kInvalidArgument, "--exit-when-replay-done needs a replay script (--replay or [replay])");
+  if (!config.dmx_replay_path.empty() && config.dmx_patch_path.empty()) {
+    return Status(StatusCode::kInvalidArgument, "--dmx-replay needs the DMX patch (--dmx PATCH.toml)");
+  }
+  if (!config.dmx_patch_path.empty()) RELIGHT_RETURN_IF_ERROR(m.OpenDmx());
+  if (config.exit_when_replay_done && !m.replay && !m.dmx_is_replay) {
+    return Status(StatusCode::kInvalidArgument,
+                  "--exit-when-replay-done needs a replay script (--replay, [replay] or --dmx-replay)");
   }
   CameraView view = cli::CameraFromBake(m.engine.bake().camera);
   for (int i = 0; i < 3; ++i) {
@@ -295,7 +339,7 @@ Status Daemon::Run(const std::atomic<bool>& stop, std::atomic<bool>& reload) {
     if (m.observer) m.observer({frame, early ? -1 : tick, render_us, out_us, shown_arrival_us});
 
     if (m.config.max_frames > 0 && frame + 1 >= m.config.max_frames) break;
-    if (!early && m.config.exit_when_replay_done && m.replay->Finished() && m.path.Idle(time_us)) break;
+    if (!early && m.config.exit_when_replay_done && m.ScriptsFinished() && m.path.Idle(time_us)) break;
     if (early) continue;  // the tick is still to come
     ++tick;
     if (!m.config.script_time) {
