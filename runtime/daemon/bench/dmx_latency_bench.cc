@@ -1,6 +1,6 @@
 // DMX frame in -> frame out, relightd's loop in-process (issue 12):
 //
-//   dmx_latency_bench BAKE [--seconds 20] [--fps 44] [--width 1280 --height 720]
+//   dmx_latency_bench BAKE [--seconds 20] [--fps 44] [--width 1280 --height 720]   (at most 60 s)
 //
 // olad runs as nobody in a private network namespace with every plugin off
 // (needs root, like tests/daemon/dmx_daemon_test.cc). A sender thread, an
@@ -105,7 +105,8 @@ int Run(const Args& a) {
   daemon.AddSink(std::move(sink));
   const int lum = daemon.engine().FindLuminaire(daemon.engine().bake().luminaires[0].name);
 
-  // pan16 of DMX frame k: 1000 + 13 k (mod 2^16), distinct over any run shorter than ~80 min at 44 Hz.
+  // pan16 of DMX frame k: 12000 + 13 k (mod 40000): inside +-180 degrees (the engine wraps angles, the
+  // value must come back from its state), distinct over any run shorter than ~70 s at 44 Hz.
   constexpr int kRing = 1 << 16;
   std::vector<int64_t> sent_us(kRing, 0);  // by pan16
   std::mutex mu;
@@ -143,13 +144,13 @@ int Run(const Args& a) {
     render_us.clear();
   }
   const int64_t frame_us = 22727;  // 44 frames/s
-  const int64_t frames = static_cast<int64_t>(a.seconds * 44);
+  const int64_t frames = static_cast<int64_t>(std::min(a.seconds, 60.0) * 44);
   ola::DmxBuffer buffer;
   const int64_t t0 = MonotonicUs();
   for (int64_t k = 0; k < frames; ++k) {
     const int64_t due = t0 + k * frame_us;
     while (MonotonicUs() < due) std::this_thread::sleep_for(std::chrono::microseconds(200));
-    const uint16_t pan16 = static_cast<uint16_t>(1000 + 13 * k);
+    const uint16_t pan16 = static_cast<uint16_t>(12000 + (13 * k) % 40000);
     const uint8_t slots[13] = {255, 255, static_cast<uint8_t>(pan16 >> 8), static_cast<uint8_t>(pan16 & 0xFF),
                                128, 0, 0, 0, 0, 0, 128, 255, 0};
     buffer.Set(slots, sizeof slots);
