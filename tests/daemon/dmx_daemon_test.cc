@@ -36,8 +36,8 @@ using testing::WriteTemp;
 // The Cornell box's one luminaire as a relight-test-spot ("16 bit") at
 // universe 1, address 10: dimmer, dimmer fine, pan, pan fine, tilt, tilt
 // fine, C, M, Y, wheel, zoom, shutter, gobo.
-std::string SpotPatch(const std::string& dmx_section = "") {
-  return WriteTemp("dmx_daemon_patch.toml", dmx_section +
+std::string SpotPatch(const std::string& file, const std::string& dmx_section = "") {
+  return WriteTemp(file, dmx_section +
                                                 "[[dmx_fixture]]\nname = \"spot\"\ntype = \"" RELIGHT_SOURCE_DIR
                                                 "/fixtures/dmx/relight-test-spot.toml\"\nmode = \"16 bit\"\n"
                                                 "universe = 1\naddress = 10\n");
@@ -80,7 +80,7 @@ TEST(DmxDaemon, ADmxReplayDrivesTheEngineInScriptTime) {
   c.fps = 44;
   c.script_time = true;
   c.exit_when_replay_done = true;
-  c.dmx_patch_path = SpotPatch();
+  c.dmx_patch_path = SpotPatch("dmx_daemon_replay_patch.toml");
   c.dmx_replay_path = WriteTemp("dmx_daemon.dmxrec",
                                 "0 1 10=1234abcd01ffff0080 19=00ffff00\n"
                                 "45454 1 12=80 13=00\n");  // frame 2: pan home
@@ -177,7 +177,7 @@ TEST(DmxDaemon, EndToEndOverTheWireThroughOlad) {
 
   DaemonConfig c = SmallConfig();
   c.fps = 44;
-  c.dmx_patch_path = SpotPatch("[dmx]\nloss_timeout_ms = 200\n");  // hold (the default)
+  c.dmx_patch_path = SpotPatch("dmx_daemon_wire_patch.toml", "[dmx]\nloss_timeout_ms = 200\n");  // hold (the default)
   Daemon d;
   ASSERT_TRUE(d.Open(c).ok());
   std::mutex mu;
