@@ -89,7 +89,7 @@ int ParseParamText(const std::string& text, int64_t time_us, NamedChange out[3],
 
   Param kind = Param::kDimmer;
   if (!ParamFromName(param, &kind)) {
-    return fail("unknown parameter '" + param + "' (pan, tilt, roll, dimmer, r, g, b, colour, zoom)");
+    return fail("unknown parameter '" + param + "' (pan, tilt, roll, zoom, dimmer, r, g, b, colour)");
   }
   bool percent = false;
   if (param == "dimmer" && !value.empty() && value.back() == '%') {
@@ -101,10 +101,10 @@ int ParseParamText(const std::string& text, int64_t time_us, NamedChange out[3],
   if (percent) v /= 100.0;
   out[0] = base;
   out[0].change.param = kind;
-  if (kind == Param::kZoom) {
-    if (v < 0.1 || v > 180) return fail("zoom must be a beam angle in 0.1..180 degrees");
-    out[0].change.degrees = DegreesQ16(v);
-  } else if (IsAngle(kind)) {
+  if (kind == Param::kZoom && !(v > 0 && v < 180)) {
+    return fail("zoom (the full beam angle) must be in (0, 180) degrees");
+  }
+  if (IsAngle(kind)) {
     if (v < -720 || v > 720) return fail(param + " must be in -720..720 degrees");
     out[0].change.degrees = DegreesQ16(v);
   } else {

@@ -158,7 +158,7 @@ TEST(ChangePath, ADmxFrameReachesTheEngineWithoutAllocating) {
   BoundInput input{&source, {}};
   ASSERT_TRUE(BindNames(engine, names, "alloc_dmx.toml", &input.luminaire_of).ok());
   EXPECT_EQ(input.luminaire_of, (std::vector<uint16_t>{2, 1, 0}));
-  (void)path.Poll(input, 0, 0);  // the first frame (its zoom is refused until the engine has SetZoom)
+  (void)path.Poll(input, 0, 0);  // the first frame (its zoom: SetZoom's kUnsupported, these luminaires have none)
   (void)path.Apply(0);
   engine.Update();
 

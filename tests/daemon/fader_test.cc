@@ -44,23 +44,23 @@ TEST(Fader, ResetReportsEveryParameterOnce) {
   Fader fader(Fixtures(0, DimmerCurve::kLinear));
   fader.Reset(0, Dark());
   ParamChange out[kParamCount];
-  // Every parameter of FixtureState: all but zoom, which has no value until a target sets it.
-  EXPECT_EQ(fader.Step(0, out), static_cast<size_t>(kParamCount - 1));
+  EXPECT_EQ(fader.Step(0, out), static_cast<size_t>(kParamCount));
   EXPECT_EQ(fader.Step(1, out), 0u);
 }
 
-TEST(Fader, ZoomJumpsToItsFirstValueThenFades) {
+TEST(Fader, ZoomFadesInDegrees) {
   Fader fader(Fixtures(1000, DimmerCurve::kLinear));
-  fader.Reset(0, Dark());
+  FixtureState start = Dark();
+  start.zoom_deg = Q16_16::FromInt(20);
+  fader.Reset(0, start);
   ParamChange out[kParamCount];
-  (void)fader.Step(0, out);
-  ASSERT_TRUE(fader.SetTarget(Target(Param::kZoom, 20 << 16), 0));
-  ASSERT_EQ(fader.Step(0, out), 1u);  // no ramp up from a beam angle of 0
-  EXPECT_EQ(out[0].param, Param::kZoom);
-  EXPECT_EQ(out[0].degrees.raw(), 20 << 16);
-  EXPECT_EQ(out[0].fixture, 0);
+  EXPECT_EQ(Find(out, fader.Step(0, out), Param::kZoom, -1), 20 << 16);
   ASSERT_TRUE(fader.SetTarget(Target(Param::kZoom, 40 << 16), 0));
-  EXPECT_EQ(Find(out, fader.Step(500000, out), Param::kZoom, -1), 30 << 16);  // then the fade time
+  const size_t n = fader.Step(500000, out);
+  ASSERT_EQ(n, 1u);
+  EXPECT_EQ(out[0].param, Param::kZoom);
+  EXPECT_EQ(out[0].degrees.raw(), 30 << 16);  // half way
+  EXPECT_EQ(out[0].fixture, 0);
 }
 
 TEST(Fader, ChangesAreTypedByTheirParameter) {

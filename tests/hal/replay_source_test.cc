@@ -61,9 +61,16 @@ TEST(ParamText, AngleRangeErrorsSayWhichParameterAndTheUnit) {
     EXPECT_EQ(error, "'" + text + "': " + param + " must be in -720..720 degrees");
   }
   EXPECT_EQ(ParseParamText("spot1.iris=1", 0, c, &error), 0);
-  EXPECT_NE(error.find("(pan, tilt, roll, dimmer, r, g, b, colour, zoom)"), std::string::npos) << error;
-  EXPECT_EQ(ParseParamText("spot1.zoom=0", 0, c, &error), 0);
-  EXPECT_NE(error.find("zoom must be a beam angle in 0.1..180 degrees"), std::string::npos) << error;
+  EXPECT_NE(error.find("(pan, tilt, roll, zoom, dimmer, r, g, b, colour)"), std::string::npos) << error;
+  for (const char* text : {"spot1.zoom=0", "spot1.zoom=180", "spot1.zoom=-20"}) {
+    EXPECT_EQ(ParseParamText(text, 0, c, &error), 0) << text;
+    EXPECT_EQ(error, "'" + std::string(text) + "': zoom (the full beam angle) must be in (0, 180) degrees");
+  }
+  ASSERT_EQ(ParseParamText("spot1.zoom=24.5", 0, c, &error), 1) << error;
+  EXPECT_EQ(c[0].change.param, Param::kZoom);
+  EXPECT_EQ(Deg(c[0]), 24.5 * 65536);
+  EXPECT_TRUE(IsAngle(Param::kZoom));
+  EXPECT_STREQ(ParamName(Param::kZoom), "zoom");
 }
 
 TEST(ParamText, RejectsBadTextWithAMessage) {

@@ -117,7 +117,7 @@ Param ParseParamName(const Table& t, const char* key, const std::string& name) {
   // Zoom is a beam angle a console sends, not a quantity an encoder steps from 0.
   if (!ParamFromName(name, &param) || param == Param::kZoom) {
     t.Fail(t.Node(key),
-           std::string("'") + key + "' must be one of pan, tilt, roll, dimmer, r, g, b; got '" + name + "'");
+           std::string("'") + key + "' must be one of pan, tilt, roll, zoom, dimmer, r, g, b; got '" + name + "'");
   }
   return param;
 }

@@ -22,9 +22,9 @@ Status ApplyToEngine(Engine& engine, const ParamChange& change) {
     case Param::kGreen: return engine.SetColour(index, s.rgb[0], level, s.rgb[2]);
     case Param::kBlue: return engine.SetColour(index, s.rgb[0], s.rgb[1], level);
     case Param::kRoll: return engine.SetRoll(index, change.degrees);
-    // The one place zoom reaches the engine: `return engine.SetZoom(index, change.degrees);`
-    // once the engine has SetZoom (issue 12 item 3, helper A).
-    case Param::kZoom: return Status(StatusCode::kUnsupported, "zoom: the engine has no SetZoom yet");
+    // A fade's first step reports every parameter: an unchanged zoom is no
+    // change, even on a luminaire without one.
+    case Param::kZoom: return change.degrees == s.zoom_deg ? Status::Ok() : engine.SetZoom(index, change.degrees);
   }
   return Status(StatusCode::kInvalidArgument, "unknown parameter");
 }

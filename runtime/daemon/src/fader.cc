@@ -21,12 +21,11 @@ void Fader::Reset(int slot, const FixtureState& state) {
   Slot& s = slots_[static_cast<size_t>(slot)];
   const int32_t values[kParamCount] = {state.pan_deg.raw(), state.tilt_deg.raw(), state.dimmer.raw(),
                                        state.rgb[0].raw(),  state.rgb[1].raw(),  state.rgb[2].raw(),
-                                       state.roll_deg.raw(), 0};  // in Param order
+                                       state.roll_deg.raw(), state.zoom_deg.raw()};  // in Param order
   for (int p = 0; p < kParamCount; ++p) {
     s.ramps[p] = Ramp();
     s.ramps[p].from = s.ramps[p].to = s.ramps[p].shown = values[p];
-    s.ramps[p].known = static_cast<Param>(p) != Param::kZoom;
-    s.ramps[p].report = s.ramps[p].known;
+    s.ramps[p].report = true;
   }
 }
 
@@ -43,14 +42,10 @@ bool Fader::SetTarget(const ParamChange& change, int64_t now_us) {
   if (change.fixture >= slots_.size() || static_cast<int>(change.param) >= kParamCount) return false;
   Slot& s = slots_[change.fixture];
   Ramp& r = s.ramps[static_cast<int>(change.param)];
-  const int32_t to = IsAngle(change.param) ? change.degrees.raw() : change.level.raw();
-  // The first value of a parameter with none yet (zoom) is a jump, not a ramp from 0.
-  r.from = r.known ? ValueAt(r, now_us) : to;
-  r.to = to;
+  r.from = ValueAt(r, now_us);
+  r.to = IsAngle(change.param) ? change.degrees.raw() : change.level.raw();
   r.start_us = now_us;
-  r.duration_us = r.known ? int64_t{s.patch.fade_ms} * 1000 : 0;
-  if (!r.known) r.report = true;
-  r.known = true;
+  r.duration_us = int64_t{s.patch.fade_ms} * 1000;
   return true;
 }
 
@@ -60,7 +55,6 @@ size_t Fader::Step(int64_t now_us, ParamChange* out) {
     Slot& s = slots_[slot];
     for (int p = 0; p < kParamCount; ++p) {
       Ramp& r = s.ramps[p];
-      if (!r.known) continue;
       const Param param = static_cast<Param>(p);
       int32_t value = ValueAt(r, now_us);
       if (param == Param::kDimmer) value = ApplyDimmerCurve(s.patch.dimmer_curve, value);
@@ -82,7 +76,7 @@ void Fader::CopyRampsFrom(const Fader& old) {
       if (o.patch.name != s.patch.name) continue;
       for (int p = 0; p < kParamCount; ++p) {
         s.ramps[p] = o.ramps[p];
-        s.ramps[p].report = s.ramps[p].known;
+        s.ramps[p].report = true;
       }
     }
   }

@@ -17,9 +17,10 @@ namespace relight {
 
 enum class Param : uint8_t { kPan, kTilt, kDimmer, kRed, kGreen, kBlue, kRoll, kZoom };
 inline constexpr int kParamCount = 8;
-// pan, tilt, roll and zoom (the beam angle) carry degrees; the rest Q1.15 levels.
+// pan, tilt, roll and zoom (the full beam angle) carry degrees; the rest Q1.15 levels.
 inline constexpr bool IsAngle(Param param) {
-  return param == Param::kPan || param == Param::kTilt || param == Param::kRoll || param == Param::kZoom;
+  return param == Param::kPan || param == Param::kTilt || param == Param::kRoll ||
+         param == Param::kZoom;
 }
 
 inline constexpr size_t kMaxFixtureName = 47;

@@ -18,9 +18,10 @@
 namespace relight::control {
 
 // Calls the setter of change.param for luminaire change.fixture: degrees
-// for pan, tilt and roll (the other angle kept), levels clamped to 0..1 for
-// dimmer and colour (the other channels kept). kInvalidArgument for a bad
-// index; kUnsupported for zoom until the engine has SetZoom.
+// for pan, tilt, roll and zoom (the other angle kept), levels clamped to 0..1
+// for dimmer and colour (the other channels kept); an unchanged zoom is no
+// call. kInvalidArgument for a bad index; SetZoom's kUnsupported for a new
+// zoom on a luminaire without one.
 Status ApplyToEngine(Engine& engine, const ParamChange& change);
 
 // The bake's luminaire names, in index order.

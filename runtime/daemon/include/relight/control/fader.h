@@ -30,8 +30,7 @@ class Fader {
 
   int slot_count() const { return static_cast<int>(slots_.size()); }
   // Starts slot `slot` at `state` without a ramp (its dimmer taken as the
-  // control level). The next Step() reports all of its parameters but zoom
-  // (FixtureState has none: zoom is reported once a target set it).
+  // control level). The next Step() reports all of its parameters.
   void Reset(int slot, const FixtureState& state);
   // A new target for slot change.fixture; ramps from the value shown at
   // now_us. False if there is no such slot.
@@ -55,7 +54,6 @@ class Fader {
     int64_t start_us = 0, duration_us = 0;
     int32_t shown = 0;    // last value reported
     bool report = false;  // report on the next Step even if unchanged
-    bool known = true;    // false until a value exists (zoom before its first target)
   };
   struct Slot {
     hal::FixturePatch patch;
