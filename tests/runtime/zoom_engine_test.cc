@@ -209,10 +209,8 @@ TEST(Zoom, SetTextReachesTheEngine) {
   EXPECT_NE(error.find("plain.zoom"), std::string::npos) << error;
   EXPECT_NE(error.find("no zoom"), std::string::npos) << error;
   // An unchanged zoom (a fade's first step reports every parameter) is no change.
-  ParamChange same;
-  std::snprintf(same.fixture, sizeof same.fixture, "plain");
-  same.param = Param::kZoom;
-  same.value = 0;
+  const ParamChange same = ParamChange::Angle(0, static_cast<uint16_t>(engine.FindLuminaire("plain")), Param::kZoom,
+                                              Q16_16::FromRaw(0));
   EXPECT_TRUE(cli::ApplyChange(engine, same, &error)) << error;
 }
 
