@@ -75,6 +75,9 @@ if [ $# -gt 0 ]; then
   list="$OUT/selected.txt"
 fi
 status=0
-grep -v '^$' "$list" | xargs -d '\n' -P "$JOBS" -I{} bash -c 'run_one "$1"' _ {} || status=1
+grep -v '^$' "$list" | xargs -d '\n' -P "$JOBS" -I{} bash -c 'run_one "$1"' _ {} | tee "$OUT/summary.txt" || status=1
+passed=$(grep -c ' ok: ' "$OUT/summary.txt" || true)
+failed=$(grep -c ' FAILED ' "$OUT/summary.txt" || true)
 echo "fuzz-run: done in $(( $(date +%s) - start )) s"
+echo "fuzz: $passed passed, $failed failed"
 exit $status
