@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -20,7 +21,12 @@ const std::string& ScratchDir() {
       std::perror("mkdtemp");
       std::abort();
     }
-    std::atexit([] { std::filesystem::remove_all(ScratchDir()); });
+    // The path for the exit handler lives in a static array: it runs after
+    // `dir` itself is destroyed (it was registered before `dir` was made).
+    static char removal_path[4096];
+    if (buf.size() > sizeof removal_path) std::abort();
+    std::memcpy(removal_path, buf.data(), buf.size());
+    std::atexit([] { std::error_code ec; std::filesystem::remove_all(removal_path, ec); });
     return std::string(buf.data());
   }();
   return dir;
