@@ -55,6 +55,11 @@ Status ApplySettings(const std::vector<FixtureSetting>& settings, Engine* engine
     const Q16_16 roll = s.roll_deg ? Degrees(*s.roll_deg)
                                    : Q16_16::FromRaw(engine->bake().luminaires[i].roll);
     RELIGHT_RETURN_IF_ERROR(engine->SetRoll(i, roll));
+    const BakeZoom& zoom = engine->bake().luminaires[i].zoom;
+    if (zoom.present()) {
+      const Q16_16 angle = s.zoom_deg ? Degrees(*s.zoom_deg) : Q16_16::FromRaw(zoom.default_deg);
+      RELIGHT_RETURN_IF_ERROR(engine->SetZoom(i, angle));
+    }
     RELIGHT_RETURN_IF_ERROR(engine->SetDimmer(i, Level(s.dimmer)));
     RELIGHT_RETURN_IF_ERROR(
         engine->SetColour(i, Level(s.colour[0]), Level(s.colour[1]), Level(s.colour[2])));

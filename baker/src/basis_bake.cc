@@ -139,9 +139,13 @@ Baker::Baker(const Scene& scene, const BakeOptions& options)
       (!options.store_hierarchy || options.solver == SolverKind::kDense)) {
     nothing_to_bake();
   }
-  impl_->core = BuildBakerCore(scene, options, &impl_->progress);
+  Scene chosen = scene;
+  const std::vector<LuminaireDegree> zoom_degrees =
+      ChooseZoomDegrees(&chosen, options.direct_mode.value_or(DirectModeKind::kExact));
+  impl_->core = BuildBakerCore(chosen, options, &impl_->progress);
   if (scene.luminaires.empty() && !impl_->core->hierarchical_solver) nothing_to_bake();
   impl_->report = impl_->core->report;
+  impl_->report.zoom_degrees = zoom_degrees;
 }
 
 Baker::~Baker() = default;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "relight/baker/beam_profile.h"
 #include "relight/baker/photometric_file.h"
 #include "relight/baker/scene.h"
 
@@ -39,6 +40,8 @@ double Lid::Evaluate(double gamma_in_deg) const {
       const double t = (g_deg - gamma_deg[hi - 1]) / (gamma_deg[hi] - gamma_deg[hi - 1]);
       return candela[hi - 1] + t * (candela[hi] - candela[hi - 1]);
     }
+    case LidKind::kBeam:
+      return beam_deg > 0 ? peak_cd * BeamProfile(g_deg / (beam_deg / 2), beam_exponent) : 0.0;
     case LidKind::kCGamma: {
       if (!file) return 0.0;
       // Mean over C, 1 degree steps: the file's planes are linear in C

@@ -183,19 +183,22 @@ DegreeChoice ChooseShDegree(const LidErrorModel& model, double target, ShWindow 
   return out;
 }
 
+LuminaireDegree ChooseLuminaireDegree(Luminaire* lum, double target, DirectModeKind mode) {
+  LuminaireDegree d;
+  d.name = lum->name;
+  d.old_degree = lum->sh_degree;
+  d.window = lum->use_sigma.value_or(mode == DirectModeKind::kAllInSh) ? ShWindow::kSigma
+                                                                      : ShWindow::kNone;
+  d.measure = mode == DirectModeKind::kExact ? LidErrorMeasure::kZonalFlux : LidErrorMeasure::kL2;
+  d.choice = ChooseShDegree(LidErrorModel(NarrowestLid(lum->lid)), target, d.window, d.measure);
+  lum->sh_degree = d.choice.degree;
+  lum->sh_degree_given = true;
+  return d;
+}
+
 std::vector<LuminaireDegree> ApplyLidErrorTarget(Scene* scene, double target, DirectModeKind mode) {
   std::vector<LuminaireDegree> out;
-  for (Luminaire& lum : scene->luminaires) {
-    LuminaireDegree d;
-    d.name = lum.name;
-    d.old_degree = lum.sh_degree;
-    d.window = lum.use_sigma.value_or(mode == DirectModeKind::kAllInSh) ? ShWindow::kSigma
-                                                                       : ShWindow::kNone;
-    d.measure = mode == DirectModeKind::kExact ? LidErrorMeasure::kZonalFlux : LidErrorMeasure::kL2;
-    d.choice = ChooseShDegree(LidErrorModel(lum.lid), target, d.window, d.measure);
-    lum.sh_degree = d.choice.degree;
-    out.push_back(d);
-  }
+  for (Luminaire& lum : scene->luminaires) out.push_back(ChooseLuminaireDegree(&lum, target, mode));
   return out;
 }
 

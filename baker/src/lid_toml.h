@@ -3,6 +3,8 @@
 //   { type = "cos", exponent, spread, peak_cd }        (Dobashi Eq. 11)
 //   { type = "table", gamma = [0, ...], candela = [...] }
 //   { type = "file", path = "luminaire.ies" }        (IES LM-63 or EULUMDAT .ldt)
+//   { type = "beam", beam_angle, field_angle, lumens | peak_cd, zoom = [min, max] }
+//                                                    (a zoom optic, beam_profile.h)
 #pragma once
 
 #include "relight/baker/scene.h"

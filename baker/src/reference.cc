@@ -6,6 +6,7 @@
 #include <string>
 
 #include "radiosity_vec.h"
+#include "relight/baker/beam_profile.h"
 #include "relight/baker/fixture_frame.h"
 #include "relight/baker/photometry.h"
 
@@ -74,14 +75,26 @@ ReferenceResult ComputeReference(const BakerCore& core,
   const auto n = static_cast<Eigen::Index>(mesh.patch_count());
   std::vector<FixtureFrame> frames;
   std::vector<const Lid*> lids;
+  // Each LID as set: a zooming beam at the setting's angle (clamped to its
+  // range as the engine clamps it), lumens held.
+  std::vector<Lid> set_lids;
+  set_lids.reserve(lums);
+  for (size_t l = 0; l < lums; ++l) {
+    const Lid& lid = scene.luminaires[l].lid;
+    const std::optional<double>& zoom = settings[l].zoom_deg;
+    set_lids.push_back(lid.zooms() && zoom ? ZoomedBeamLid(lid, std::clamp(*zoom, lid.zoom_min_deg,
+                                                                           lid.zoom_max_deg))
+                                           : lid);
+  }
   Eigen::MatrixXd e(n, static_cast<Eigen::Index>(lums));
   for (size_t l = 0; l < lums; ++l) {
     const Luminaire& lum = scene.luminaires[l];
     frames.push_back(SettingFrame(lum, settings[l]));
-    lids.push_back(&lum.lid);
+    lids.push_back(&set_lids[l]);
     const FixtureFrame frame = frames.back();
+    const Lid& lid = set_lids[l];
     e.col(static_cast<Eigen::Index>(l)) = PatchIlluminance(
-        core.direct[l], [&](const Vec3& dir) { return ExactIntensity(lum.lid, frame, dir); });
+        core.direct[l], [&](const Vec3& dir) { return ExactIntensity(lid, frame, dir); });
   }
   // Per channel, each luminaire's white-light result times dimmer x colour.
   std::array<Eigen::VectorXd, 3> level;

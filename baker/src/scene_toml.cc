@@ -11,10 +11,10 @@
 #include <utility>
 
 #include "bounded_read.h"
-#include "lid_toml.h"
+#include "grid_toml.h"
+#include "luminaire_toml.h"
 #include "obj_loader.h"
 #include "polygon_check.h"
-#include "relight/baker/fixture_frame.h"
 #include "relight/baker/photometry.h"
 #include "relight/baker/scene.h"
 #include "scene_geometry.h"
@@ -25,15 +25,11 @@ namespace relight::baker {
 
 namespace {
 
-constexpr int64_t kMaxGridPoints = 1000000;
-constexpr double kMinVectorM = 1e-6;  // shorter direction vectors are treated as zero
 
 std::string FolderOf(const std::string& path) {
   const size_t slash = path.find_last_of('/');
   return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
 }
-
-std::string Quoted(const std::string& s) { return "'" + s + "'"; }
 
 class SceneReader {
  public:
@@ -65,9 +61,11 @@ class SceneReader {
       scene.surfaces.push_back(std::move(entry.second));
     }
     for (const toml::table* t : TablesOf("luminaire")) {
-      scene.luminaires.push_back(ReadLuminaire(*t));
+      scene.luminaires.push_back(ReadLuminaire(*t, path_, &luminaire_lines_));
     }
-    for (const toml::table* t : TablesOf("grid")) scene.grids.push_back(ReadGrid(*t));
+    for (const toml::table* t : TablesOf("grid")) {
+      scene.grids.push_back(ReadGrid(*t, path_, &grid_lines_));
+    }
     return scene;
   }
 
@@ -330,125 +328,6 @@ class SceneReader {
       if (!problem.empty()) throw SceneError(obj_path, face.line, "face " + problem);
       surfaces_.emplace_back(f.line(), std::move(surface));  // LoadObj keeps only flat quads
     }
-  }
-
-  Luminaire ReadLuminaire(const toml::table& table) {
-    TomlFields f(table, path_, "luminaire");
-    f.NameFrom("name", "luminaire");
-    f.CheckKeys({"name", "position", "mounting", "pan", "tilt", "aim_at", "dimmer", "colour",
-                 "sh_degree", "sigma", "lid", "yaw", "roll", "pan_range", "tilt_range"});
-    Luminaire lum;
-    lum.line = f.line();
-    lum.name = f.Identifier("name");
-    f.set_what("luminaire " + Quoted(lum.name));
-    const auto [it, inserted] = luminaire_lines_.emplace(lum.name, lum.line);
-    if (!inserted) {
-      f.Fail(f.Required("name"),
-             "name already used by the luminaire at line " + std::to_string(it->second));
-    }
-    lum.position = f.Vector("position");
-    const std::string mounting = f.String("mounting");
-    if (mounting == "hanging") {
-      lum.mounting = MountingKind::kHanging;
-    } else if (mounting == "standing") {
-      lum.mounting = MountingKind::kStanding;
-    } else if (mounting == "wall") {
-      lum.mounting = MountingKind::kWall;
-    } else {
-      f.Fail(f.Required("mounting"), "mounting must be \"hanging\", \"standing\" or \"wall\", got " +
-                                         Describe(f.Required("mounting")));
-    }
-    lum.yaw_deg = f.Number("yaw", Closed(-360, 360), 0.0);
-    lum.roll_deg = f.Number("roll", Closed(-360, 360), 0.0);
-    lum.pan_range_deg = f.Number("pan_range", OpenClosed(0, 720), 540.0);
-    lum.tilt_range_deg = f.Number("tilt_range", OpenClosed(0, 360), 270.0);
-    if (f.Has("aim_at")) {
-      if (f.Has("pan") || f.Has("tilt")) {
-        f.Fail(f.Required("aim_at"), "give either aim_at or pan/tilt, not both");
-      }
-      const Vec3 target = f.Vector("aim_at");
-      if (Length(Sub(target, lum.position)) < kMinVectorM) {
-        f.Fail(f.Required("aim_at"), "aim_at must differ from position");
-      }
-      AimAtPose(lum.mounting, lum.yaw_deg, lum.position, target, &lum.pan_deg, &lum.tilt_deg);
-    } else {
-      lum.pan_deg = f.Number("pan", Closed(-360, 360), 0.0);
-      lum.tilt_deg = f.Number("tilt", Closed(-180, 180), 0.0);
-    }
-    lum.dimmer = f.Number("dimmer", Closed(0, 1), 1.0);
-    if (f.Has("colour")) {
-      const toml::node& node = f.Required("colour");
-      const auto* array = node.as_array();
-      if (array == nullptr || array->size() != 3) {
-        f.Fail(node, "colour must be [r, g, b], each in [0, 1], got " + Describe(node));
-      }
-      for (size_t k = 0; k < 3; ++k)
-        lum.colour[k] = f.ReadNumber(*array->get(k), "colour", Closed(0, 1));
-    }
-    lum.sh_degree = static_cast<int>(f.Integer("sh_degree", 0, 16, 8));
-    if (f.Has("sigma")) lum.use_sigma = f.Bool("sigma", true);
-    lum.lid = ReadLid(TomlFields(f.Table("lid"), path_, f.what() + " lid"));
-    return lum;
-  }
-
-  CalcGrid ReadGrid(const toml::table& table) {
-    TomlFields f(table, path_, "grid");
-    f.NameFrom("name", "grid");
-    f.CheckKeys({"name", "origin", "u", "v", "columns", "rows", "normal", "points"});
-    CalcGrid grid;
-    grid.name = f.Identifier("name");
-    f.set_what("grid " + Quoted(grid.name));
-    const auto [it, inserted] = grid_lines_.emplace(grid.name, f.line());
-    if (!inserted) {
-      f.Fail(f.Required("name"),
-             "name already used by the grid at line " + std::to_string(it->second));
-    }
-    std::optional<Vec3> normal;
-    if (f.Has("normal")) {
-      const Vec3 n = f.Vector("normal");
-      if (Length(n) < kMinVectorM) f.Fail(f.Required("normal"), "normal must not be zero");
-      normal = Scale(n, 1.0 / Length(n));
-    }
-    if (f.Has("points")) {
-      for (const char* key : {"origin", "u", "v", "columns", "rows"}) {
-        if (f.Has(key)) {
-          f.Fail(f.Required(key),
-                 std::string("a grid has either points or a rectangle (origin, u, v, "
-                             "columns, rows), not both; remove ") +
-                     key);
-        }
-      }
-      if (!normal) f.Fail("missing key 'normal' (a grid of points needs one)");
-      const toml::array& points = f.Array("points");
-      if (points.empty() || static_cast<int64_t>(points.size()) > kMaxGridPoints) {
-        f.Fail(f.Required("points"), "points must hold 1.." + std::to_string(kMaxGridPoints) +
-                                         " points, got " + Describe(f.Required("points")));
-      }
-      for (size_t i = 0; i < points.size(); ++i) {
-        grid.points.push_back(f.ReadVec3(*points.get(i), "point " + std::to_string(i + 1)));
-      }
-    } else {
-      const Vec3 origin = f.Vector("origin"), u = f.Vector("u"), v = f.Vector("v");
-      const int64_t columns = f.Integer("columns", 1, kMaxGridPoints);
-      const int64_t rows = f.Integer("rows", 1, kMaxGridPoints);
-      if (columns * rows > kMaxGridPoints) {
-        f.Fail(f.Required("rows"), "columns x rows must be at most " +
-                                       std::to_string(kMaxGridPoints) + ", got " +
-                                       std::to_string(columns * rows));
-      }
-      if (Length(u) < kMinVectorM) f.Fail(f.Required("u"), "u must not be zero");
-      if (Length(v) < kMinVectorM) f.Fail(f.Required("v"), "v must not be zero");
-      const Vec3 uv = Cross(u, v);
-      if (Length(uv) < 1e-6 * Length(u) * Length(v)) {
-        f.Fail(f.Required("v"), "u and v must not be parallel");
-      }
-      if (!normal) normal = Scale(uv, 1.0 / Length(uv));
-      grid.columns = static_cast<int>(columns);
-      grid.rows = static_cast<int>(rows);
-      grid.points = RectangleGridPoints(origin, u, v, grid.columns, grid.rows);
-    }
-    grid.normals.assign(grid.points.size(), *normal);
-    return grid;
   }
 
   TomlFields root_;

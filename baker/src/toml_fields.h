@@ -38,6 +38,10 @@ std::string Describe(const toml::node& node);
 // A number with no trailing zeros ("0.5", "20", "1e-06").
 std::string FormatNumber(double x);
 bool IsIdentifier(const std::string& name);
+// 'name', for messages.
+inline std::string Quoted(const std::string& s) { return "'" + s + "'"; }
+// Direction vectors shorter than this (metres) count as zero.
+inline constexpr double kMinVectorM = 1e-6;
 
 class TomlFields {
  public:

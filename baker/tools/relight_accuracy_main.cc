@@ -26,6 +26,23 @@ struct Case {
   std::vector<FixtureSetting> settings;
 };
 
+// Zooming beams at their narrowest, middle and widest angle (scene aims).
+void AddZoomCases(const relight::baker::Scene& scene, const std::vector<FixtureSetting>& defaults,
+                  std::vector<Case>* cases) {
+  const char* labels[3] = {"narrowest zoom", "middle zoom", "widest zoom"};
+  for (int i = 0; i < 3; ++i) {
+    Case c{labels[i], defaults};
+    bool any = false;
+    for (size_t l = 0; l < scene.luminaires.size(); ++l) {
+      const relight::baker::Lid& lid = scene.luminaires[l].lid;
+      if (!lid.zooms()) continue;
+      c.settings[l].zoom_deg = lid.zoom_min_deg + 0.5 * i * (lid.zoom_max_deg - lid.zoom_min_deg);
+      any = true;
+    }
+    if (any) cases->push_back(c);
+  }
+}
+
 std::vector<Case> StandardCases(const std::vector<FixtureSetting>& defaults) {
   std::vector<Case> cases;
   const auto with_aim = [&](const std::string& label, double pan, double tilt) {
@@ -72,6 +89,11 @@ int Run(const std::string& scene_path, relight::baker::DirectModeKind mode, cons
   std::printf("%zu patches, %zu vertices, %zu grid points, %zu SH terms; bake %.1f s\n\n",
               baker.report().patches, baker.report().vertices, baker.report().grid_points,
               baker.report().sh_terms, bake_s);
+  for (const auto& d : baker.report().zoom_degrees) {
+    std::printf("%s: zoom: SH degree %d for its narrowest beam (%s LID error %.2f%%, window %s)\n\n",
+                d.name.c_str(), d.choice.degree, relight::baker::LidErrorMeasureName(d.measure),
+                100 * d.choice.error, relight::baker::ShWindowName(d.window));
+  }
   if (!degrees.empty()) {
     std::printf("SH degrees from --lid-error %.3g%%:\n\n", 100 * lid_error);
     std::printf("| luminaire | measure | window | degree | LID error |\n| --- | --- | --- | ---: | ---: |\n");
@@ -84,7 +106,9 @@ int Run(const std::string& scene_path, relight::baker::DirectModeKind mode, cons
   }
   std::printf("| aim | vertex peak cd/m² | vertex max err | vertex mean err | grid peak lux | grid max err | grid mean err |\n");
   std::printf("| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
-  for (const Case& c : StandardCases(baker.DefaultSettings())) {
+  std::vector<Case> cases = StandardCases(baker.DefaultSettings());
+  AddZoomCases(scene, baker.DefaultSettings(), &cases);
+  for (const Case& c : cases) {
     const relight::baker::ReferenceResult ref = baker.Reference(c.settings);
     const relight::baker::AccuracyReport r = relight::baker::CompareWithReference(&engine, ref, c.settings);
     std::printf("| %s | %.3f | %.3f%% | %.4f%% | %.2f | %.3f%% | %.4f%% |\n", c.label.c_str(), r.vertices.peak,

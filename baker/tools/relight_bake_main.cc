@@ -100,6 +100,7 @@ bool ApplySets(const Scene& scene, const std::vector<std::string>& sets,
     if (arg.param == "pan") s.pan_deg = arg.values[0];
     if (arg.param == "tilt") s.tilt_deg = arg.values[0];
     if (arg.param == "roll") s.roll_deg = arg.values[0];
+    if (arg.param == "zoom") s.zoom_deg = arg.values[0];
     if (arg.param == "dimmer") s.dimmer = arg.values[0];
     if (arg.param == "r") s.colour[0] = arg.values[0];
     if (arg.param == "g") s.colour[1] = arg.values[0];
@@ -210,6 +211,13 @@ std::string SolverSummary(const relight::baker::BakeReport& r) {
 
 void PrintSummary(const Scene& scene, const relight::baker::BakeReport& r,
                   const std::string& wrote) {
+  for (const relight::baker::LuminaireDegree& d : r.zoom_degrees) {
+    std::printf("relight-bake: %s: zoom: SH degree %d for its narrowest beam, %s LID error %.2f%% "
+                "(window %s)%s\n",
+                d.name.c_str(), d.choice.degree, relight::baker::LidErrorMeasureName(d.measure),
+                100 * d.choice.error, relight::baker::ShWindowName(d.window),
+                d.choice.met ? "" : ": the 2% target is not met even at degree 16");
+  }
   std::printf(
       "relight-bake: %s: %zu patches, %zu vertices, %zu triangles, %zu grid points, "
       "%zu luminaire%s; %s; form factors %.2f s, solve %.2f s, total %.2f s, peak memory "

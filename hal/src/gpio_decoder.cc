@@ -1,6 +1,5 @@
 #include "gpio_decoder.h"
 
-#include <cstring>
 
 namespace relight::hal {
 namespace {
@@ -18,22 +17,35 @@ int QuadratureStep(int from, int to) {
   return kTable[from * 4 + to];
 }
 
-ParamChange Change(const std::string& fixture, Param param, int32_t value, int64_t time_us) {
-  ParamChange c;
-  c.time_us = time_us;
-  const size_t len = fixture.size() < kMaxFixtureName ? fixture.size() : kMaxFixtureName;
-  std::memcpy(c.fixture, fixture.data(), len);
-  c.param = param;
-  c.value = value;
-  return c;
+// `value` in the parameter's format: Q16.16 degrees or a Q1.15 level.
+ParamChange Change(int fixture, Param param, int32_t value, int64_t time_us) {
+  const uint16_t index = static_cast<uint16_t>(fixture);
+  return IsAngle(param) ? ParamChange::Angle(time_us, index, param, Q16_16::FromRaw(value))
+                        : ParamChange::Level(time_us, index, param, Q1_15::FromRaw(static_cast<int16_t>(value)));
+}
+
+int IndexOf(const Patch& patch, const std::string& name) {
+  for (size_t i = 0; i < patch.fixtures.size() && i <= static_cast<size_t>(kMaxFixtures); ++i) {
+    if (patch.fixtures[i].name == name) return static_cast<int>(i);
+  }
+  return -1;
 }
 
 }  // namespace
 
-GpioDecoder::GpioDecoder(const std::vector<GpioButtonConfig>& buttons, const std::vector<GpioEncoderConfig>& encoders) {
+GpioDecoder::GpioDecoder(const Patch& patch) {
+  const std::vector<GpioButtonConfig>& buttons = patch.buttons;
+  const std::vector<GpioEncoderConfig>& encoders = patch.encoders;
   for (size_t i = 0; i < buttons.size(); ++i) {
     Button b;
     b.config = buttons[i];
+    b.fixture = IndexOf(patch, b.config.fixture);
+    for (const NamedChange& c : b.config.preset) {
+      const int index = IndexOf(patch, c.fixture);
+      if (index < 0) continue;
+      b.preset.push_back(c.change);
+      b.preset.back().fixture = static_cast<uint16_t>(index);
+    }
     b.raw = b.stable = b.config.active_low;  // released
     buttons_.push_back(b);
     lines_.push_back({buttons[i].chip, buttons[i].line, "gpio_button " + std::to_string(i + 1)});
@@ -41,6 +53,7 @@ GpioDecoder::GpioDecoder(const std::vector<GpioButtonConfig>& buttons, const std
   for (size_t i = 0; i < encoders.size(); ++i) {
     Encoder e;
     e.config = encoders[i];
+    e.fixture = IndexOf(patch, e.config.fixture);
     e.value = encoders[i].start;
     encoders_.push_back(e);
     lines_.push_back({encoders[i].chip, encoders[i].line_a, "gpio_encoder " + std::to_string(i + 1) + " A"});
@@ -74,9 +87,9 @@ void GpioDecoder::Settle(Button& b, int64_t now_us, ChangeRing* out) {
   const int64_t at_us = b.changed_us + int64_t{b.config.debounce_ms} * 1000;
   if (b.config.action == ButtonAction::kToggle) {
     b.on = !b.on;
-    out->Push(Change(b.config.fixture, Param::kDimmer, b.on ? b.config.on_level_q15 : 0, at_us));
+    if (b.fixture >= 0) out->Push(Change(b.fixture, Param::kDimmer, b.on ? b.config.on_level_q15 : 0, at_us));
   } else {
-    for (ParamChange c : b.config.preset) {
+    for (ParamChange c : b.preset) {
       c.time_us = at_us;
       out->Push(c);
     }
@@ -94,7 +107,7 @@ void GpioDecoder::Step(Encoder& e, int new_state, int64_t time_us, ChangeRing* o
   v = v < lo ? lo : v > hi ? hi : v;
   if (v == e.value) return;
   e.value = static_cast<int32_t>(v);
-  out->Push(Change(e.config.fixture, e.config.param, e.value, time_us));
+  if (e.fixture >= 0) out->Push(Change(e.fixture, e.config.param, e.value, time_us));
 }
 
 void GpioDecoder::OnEdge(int index, bool level, int64_t time_us, ChangeRing* out) {

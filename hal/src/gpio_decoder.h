@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "change_ring.h"
+#include "relight/hal/param_text.h"
 #include "relight/hal/patch.h"
 
 namespace relight::hal {
@@ -28,7 +29,9 @@ struct GpioLineUse {
 
 class GpioDecoder {
  public:
-  GpioDecoder(const std::vector<GpioButtonConfig>& buttons, const std::vector<GpioEncoderConfig>& encoders);
+  // From a resolved patch: fixture names become indices into patch.fixtures
+  // here, once (a name the patch lacks yields no changes).
+  explicit GpioDecoder(const Patch& patch);
 
   // Every line used: button i is line i; encoder j's A and B follow the buttons.
   const std::vector<GpioLineUse>& lines() const { return lines_; }
@@ -44,12 +47,15 @@ class GpioDecoder {
  private:
   struct Button {
     GpioButtonConfig config;
+    int fixture = -1;                  // kToggle: index in the patch
+    std::vector<ParamChange> preset;   // kPreset: resolved once
     bool raw = false, stable = false;  // levels as read (true = high)
     int64_t changed_us = 0;
     bool on = false;                   // kToggle state
   };
   struct Encoder {
     GpioEncoderConfig config;
+    int fixture = -1;
     int state = 0;  // A << 1 | B
     int32_t value = 0;
   };

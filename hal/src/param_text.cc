@@ -3,7 +3,6 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 
 namespace relight::hal {
 namespace {
@@ -18,8 +17,9 @@ bool ParseNumber(const std::string& s, double* out) {
   return true;
 }
 
-int32_t LevelQ15(double level) { return static_cast<int32_t>(std::lround(level * 32767.0)); }
-int32_t DegreesQ16(double degrees) { return static_cast<int32_t>(std::llround(degrees * 65536.0)); }
+// Callers check the ranges first: 0..1 and -720..720 fit the formats.
+Q1_15 LevelQ15(double level) { return Q1_15::FromRaw(static_cast<int16_t>(std::lround(level * 32767.0))); }
+Q16_16 DegreesQ16(double degrees) { return Q16_16::FromRaw(static_cast<int32_t>(std::llround(degrees * 65536.0))); }
 
 bool ValidFixtureName(const std::string& name) {
   if (name.empty() || name.size() > kMaxFixtureName) return false;
@@ -33,7 +33,20 @@ bool ValidFixtureName(const std::string& name) {
 
 }  // namespace
 
-int ParseParamText(const std::string& text, int64_t time_us, ParamChange out[3], std::string* error) {
+int FixtureIndex(const std::vector<std::string>& fixtures, const std::string& name) {
+  for (size_t i = 0; i < fixtures.size() && i <= static_cast<size_t>(kMaxFixtures); ++i) {
+    if (fixtures[i] == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+std::string FixtureList(const std::vector<std::string>& fixtures) {
+  std::string list;
+  for (const std::string& f : fixtures) list += (list.empty() ? "" : ", ") + f;
+  return list.empty() ? "none" : list;
+}
+
+int ParseParamText(const std::string& text, int64_t time_us, NamedChange out[3], std::string* error) {
   const auto fail = [&](const std::string& why) {
     *error = "'" + text + "': " + why;
     return 0;
@@ -49,9 +62,9 @@ int ParseParamText(const std::string& text, int64_t time_us, ParamChange out[3],
   if (!ValidFixtureName(fixture)) {
     return fail("fixture name must be 1.." + std::to_string(kMaxFixtureName) + " of A-Z a-z 0-9 _ -");
   }
-  ParamChange base;
-  base.time_us = time_us;
-  std::memcpy(base.fixture, fixture.c_str(), fixture.size() + 1);
+  NamedChange base;
+  base.fixture = fixture;
+  base.change.time_us = time_us;
 
   if (param == "colour" || param == "color") {
     double rgb[3];
@@ -68,15 +81,15 @@ int ParseParamText(const std::string& text, int64_t time_us, ParamChange out[3],
     const Param params[3] = {Param::kRed, Param::kGreen, Param::kBlue};
     for (int i = 0; i < 3; ++i) {
       out[i] = base;
-      out[i].param = params[i];
-      out[i].value = LevelQ15(rgb[i]);
+      out[i].change.param = params[i];
+      out[i].change.level = LevelQ15(rgb[i]);
     }
     return 3;
   }
 
   Param kind = Param::kDimmer;
   if (!ParamFromName(param, &kind)) {
-    return fail("unknown parameter '" + param + "' (pan, tilt, roll, dimmer, r, g, b, colour)");
+    return fail("unknown parameter '" + param + "' (pan, tilt, roll, zoom, dimmer, r, g, b, colour)");
   }
   bool percent = false;
   if (param == "dimmer" && !value.empty() && value.back() == '%') {
@@ -87,13 +100,16 @@ int ParseParamText(const std::string& text, int64_t time_us, ParamChange out[3],
   if (!ParseNumber(value, &v)) return fail("'" + value + "' is not a number");
   if (percent) v /= 100.0;
   out[0] = base;
-  out[0].param = kind;
+  out[0].change.param = kind;
+  if (kind == Param::kZoom && !(v > 0 && v < 180)) {
+    return fail("zoom (the full beam angle) must be in (0, 180) degrees");
+  }
   if (IsAngle(kind)) {
     if (v < -720 || v > 720) return fail(param + " must be in -720..720 degrees");
-    out[0].value = DegreesQ16(v);
+    out[0].change.degrees = DegreesQ16(v);
   } else {
     if (v < 0 || v > 1) return fail(param + " must be in 0..1" + (param == "dimmer" ? " (or 0..100%)" : ""));
-    out[0].value = LevelQ15(v);
+    out[0].change.level = LevelQ15(v);
   }
   return 1;
 }

@@ -1,7 +1,6 @@
 #include "relight/hal/register_map.h"
 
 #include <algorithm>
-#include <cstring>
 
 #include "relight/base/console_value.h"
 
@@ -116,15 +115,10 @@ size_t RegisterMap::DecodeChanges(int fixture, const uint16_t* before, const uin
   const FixturePatch& f = fixtures_[static_cast<size_t>(fixture)];
   const RegisterLayout& layout = f.layout;
   size_t n = 0;
+  const uint16_t index = static_cast<uint16_t>(fixture);  // Build() keeps fixture_count() <= 32767
   const auto emit = [&](Param param, int32_t value) {
-    ParamChange& c = out[n++];
-    c = ParamChange();
-    c.time_us = time_us;
-    const size_t len = f.name.size() < kMaxFixtureName ? f.name.size() : kMaxFixtureName;
-    std::memcpy(c.fixture, f.name.data(), len);
-    c.fixture[len] = '\0';
-    c.param = param;
-    c.value = value;
+    out[n++] = IsAngle(param) ? ParamChange::Angle(time_us, index, param, Q16_16::FromRaw(value))
+                              : ParamChange::Level(time_us, index, param, Q1_15::FromRaw(static_cast<int16_t>(value)));
   };
   const int dimmer_at = layout.OffsetOf(Channel::kDimmer), flags_at = layout.OffsetOf(Channel::kFlags);
   const auto dimmer = [&](const uint16_t* r) {

@@ -18,7 +18,12 @@ Status MakeInputSources(const Patch& patch, const RegisterMap& map, const std::v
   }
   if (!patch.buttons.empty() || !patch.encoders.empty()) sources.push_back(std::make_unique<GpiodSource>(patch));
   const std::string script = replay_script.empty() ? patch.replay_script : replay_script;
-  if (!script.empty()) sources.push_back(std::make_unique<ReplaySource>(script));
+  if (!script.empty()) {
+    // Its changes index the patch's fixtures, as every other source here.
+    std::vector<std::string> names;
+    for (const FixturePatch& f : patch.fixtures) names.push_back(f.name);
+    sources.push_back(std::make_unique<ReplaySource>(script, std::move(names)));
+  }
   *out = std::move(sources);
   return Status::Ok();
 }

@@ -117,8 +117,8 @@ int main(int argc, char** argv) {
   CLI::App app{
       "relight-render: render a baked scene, relit by the given fixture settings, to PNG.\n"
       "Settings: --set FIXTURE.PARAM=VALUE with PARAM one of pan, tilt, roll (degrees, -720..720;\n"
-      "roll turns the fixture about its beam axis), dimmer (0..1 or 0..100%), r, g, b (0..1) or\n"
-      "colour=R,G,B. Unset parameters keep the scene's defaults.\n"
+      "roll turns the fixture about its beam axis), zoom (the full beam angle, degrees, within the\n"
+      "bake's zoom range), dimmer (0..1 or 0..100%), r, g, b (0..1) or colour=R,G,B. Unset parameters keep the scene's defaults.\n"
       "Emitters: --emitter SURFACE:L:x,y,z;x,y,z;x,y,z[;...] puts a light source on a surface of a\n"
       "bake with a radiosity hierarchy (relight-bake --solver hierarchical): L its luminance in cd/m^2\n"
       "(or R,G,B), corners in metres around a convex polygon (3 to 8) on the surface's plane.\n"

@@ -26,6 +26,7 @@
 #include "relight/engine/tone_map.h"
 #include "relight/hal/replay_source.h"
 #include "replay_hash.h"
+#include "relight/control/engine_binding.h"
 #include "set_args.h"
 
 namespace {
@@ -141,7 +142,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  relight::hal::ReplaySource source(args.script_path);
+  relight::hal::ReplaySource source(args.script_path, relight::control::LuminaireNames(engine));
   if (relight::Status st = source.Start(); !st.ok()) {
     std::fprintf(stderr, "relight-replay-hash: error: %s\n", st.ToString().c_str());
     return 2;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "relight/control/engine_binding.h"
 #include "relight/hal/replay_source.h"
 #include "relight/render/osmesa_frame.h"
 #include "contact_sheet.h"
@@ -31,7 +32,7 @@ int RenderReplay(Engine& engine, const std::string& script_path, double fps, con
                  pattern.c_str());
     return 2;
   }
-  hal::ReplaySource source(script_path);
+  hal::ReplaySource source(script_path, control::LuminaireNames(engine));
   if (Status st = source.Start(); !st.ok()) {
     std::fprintf(stderr, "relight-render: error: %s\n", st.ToString().c_str());
     return 2;

@@ -601,7 +601,68 @@ TEST_F(SceneFiles, BadLidTable) {
   ExpectError(Header() + Floor() + lum + "lid = { type = \"isotropic\", peak_cd = 0 }\n", lid_line,
               {"peak_cd must be a number > 0, got 0"});
   ExpectError(Header() + Floor() + lum + "lid = { type = \"ies\" }\n", lid_line,
-              {"type must be \"isotropic\", \"cos\", \"table\" or \"file\", got \"ies\""});
+              {"type must be \"isotropic\", \"cos\", \"table\", \"beam\" or \"file\", got \"ies\""});
+}
+
+// A zoom optic's beam model (docs/scene-format.md, lid type "beam").
+TEST_F(SceneFiles, BeamLidParsesWithItsDefaults) {
+  const std::string lum =
+      "[[luminaire]]\nname = \"z\"\nposition = [0, 0, 2]\nmounting = \"hanging\"\n";
+  const Scene scene = LoadScene(Write(
+      "scene.toml", Header() + Floor() + lum +
+                        "lid = { type = \"beam\", beam_angle = 20, lumens = 1000, zoom = [8, 40] }\n" +
+                        lum.substr(0, lum.find("name")) + "name = \"p\"\nposition = [1, 0, 2]\n" +
+                        "mounting = \"hanging\"\nsh_degree = 5\n" +
+                        "lid = { type = \"beam\", beam_angle = 30, field_angle = 45, peak_cd = 500 }\n"));
+  const Lid& zoom = scene.luminaires[0].lid;
+  EXPECT_EQ(zoom.kind, LidKind::kBeam);
+  EXPECT_TRUE(zoom.zooms());
+  EXPECT_FALSE(scene.luminaires[0].sh_degree_given);
+  EXPECT_DOUBLE_EQ(zoom.zoom_min_deg, 8);
+  EXPECT_DOUBLE_EQ(zoom.zoom_max_deg, 40);
+  EXPECT_DOUBLE_EQ(zoom.beam_exponent, 2.0);  // no field angle: a Gaussian
+  EXPECT_NEAR(zoom.Evaluate(10) / zoom.peak_cd, 0.5, 1e-12);  // half peak at half the beam angle
+  const Lid& fixed = scene.luminaires[1].lid;
+  EXPECT_FALSE(fixed.zooms());
+  EXPECT_TRUE(scene.luminaires[1].sh_degree_given);
+  EXPECT_DOUBLE_EQ(fixed.peak_cd, 500);
+  EXPECT_NEAR(fixed.Evaluate(15) / 500, 0.5, 1e-12);
+  EXPECT_NEAR(fixed.Evaluate(22.5) / 500, 0.1, 1e-12);  // a tenth at half the field angle
+}
+
+TEST_F(SceneFiles, BadBeamLid) {
+  const std::string lum =
+      "[[luminaire]]\nname = \"u\"\nposition = [0, 0, 1]\nmounting = \"standing\"\n";
+  const int lid_line = kHeaderLines + 4 + 5;
+  const auto beam = [&](const std::string& keys) {
+    return Header() + Floor() + lum + "lid = { type = \"beam\", " + keys + " }\n";
+  };
+  ExpectError(beam("beam_angle = 0, lumens = 10"), lid_line,
+              {"luminaire 'u' lid", "beam_angle must be a number in (0, 180), got 0"});
+  ExpectError(beam("beam_angle = 180, lumens = 10"), lid_line, {"beam_angle must be a number in (0, 180)"});
+  ExpectError(beam("lumens = 10"), lid_line, {"missing key 'beam_angle'"});
+  ExpectError(beam("beam_angle = 20, field_angle = 15, lumens = 10"), lid_line,
+              {"field_angle (full angle at 10 % of peak) must be in (beam_angle, 4 x beam_angle] = "
+               "(20, 80] degrees, got 15"});
+  ExpectError(beam("beam_angle = 20, field_angle = 81, lumens = 10"), lid_line, {"(20, 80]"});
+  ExpectError(beam("beam_angle = 20"), lid_line, {"exactly one of lumens or peak_cd"});
+  ExpectError(beam("beam_angle = 20, lumens = 10, peak_cd = 5"), lid_line,
+              {"exactly one of lumens or peak_cd"});
+  ExpectError(beam("beam_angle = 20, lumens = -1"), lid_line, {"lumens must be a number in (0, "});
+  ExpectError(beam("beam_angle = 20, lumens = 10, zoom = [0, 30]"), lid_line,
+              {"zoom min must be a number in (0, 180), got 0"});
+  ExpectError(beam("beam_angle = 20, lumens = 10, zoom = [10, 180]"), lid_line,
+              {"zoom max must be a number in (0, 180), got 180"});
+  ExpectError(beam("beam_angle = 20, lumens = 10, zoom = [30, 10]"), lid_line,
+              {"zoom must be [min_deg, max_deg] with min < max"});
+  ExpectError(beam("beam_angle = 20, lumens = 10, zoom = [10]"), lid_line,
+              {"zoom must be [min_deg, max_deg]"});
+  ExpectError(beam("beam_angle = 20, lumens = 10, zoom = [25, 40]"), lid_line,
+              {"beam_angle 20 is outside the zoom range [25, 40]"});
+  ExpectError(beam("beam_angle = 20, lumens = 4e9, zoom = [1, 40]"), lid_line,
+              {"the peak at the narrowest beam angle (1 degrees) is", "above 2^31 cd"});
+  ExpectError(beam("beam_angle = 20, lumens = 10, zoom_range = [1, 40]"), lid_line,
+              {"unknown key 'zoom_range'"});
 }
 
 TEST_F(SceneFiles, DuplicateAndBadLuminaireNames) {

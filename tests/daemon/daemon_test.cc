@@ -23,7 +23,9 @@ const char* kScript =
 
 std::string RenderReplayToPpm(bool script_time, const std::string& name, DaemonStats* stats) {
   DaemonConfig c = SmallConfig();
-  c.replay_path = WriteTemp("daemon_test.replay", kScript);
+  // A script file per run: tests of this binary run in parallel processes under ctest -j and
+  // would otherwise truncate each other's script mid-read.
+  c.replay_path = WriteTemp(name + ".replay", kScript);
   c.script_time = script_time;
   c.exit_when_replay_done = true;
   Daemon d;
@@ -66,7 +68,12 @@ struct MockRig {
     c.fps = fps;
     c.script_time = true;
     c.max_frames = frames;
-    if (!patch_text.empty()) c.patch_path = WriteTemp("daemon_mock_patch.toml", patch_text);
+    // One file per test: ctest -j runs this binary's tests in parallel processes.
+    if (!patch_text.empty()) {
+      c.patch_path = WriteTemp(std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+                                   "_mock_patch.toml",
+                               patch_text);
+    }
     const Status st = daemon.Open(c);
     EXPECT_TRUE(st.ok()) << st.ToString();
     auto m = std::make_unique<hal::MockSource>(daemon.patch(), std::vector<uint16_t>(16, 0));
@@ -112,15 +119,10 @@ TEST(Daemon, FadesRampLinearlyAndTheSquareCurveShapesTheDimmer) {
   rig.daemon.SetFrameObserver([&](const FrameInfo& f) {
     seen.push_back(rig.daemon.engine().state(0));
     if (f.frame == 1) {
-      ParamChange pan;
-      std::snprintf(pan.fixture, sizeof pan.fixture, "spot");
-      pan.param = Param::kPan;
-      pan.value = 100 << 16;
-      rig.mock->Inject(pan);
-      ParamChange dim = pan;
-      dim.param = Param::kDimmer;
-      dim.value = 16384;  // half: square law gives a quarter
-      rig.mock->Inject(dim);
+      // The mock is made from the patch: fixture 0 is the patch's first, "spot".
+      rig.mock->Inject(ParamChange::Angle(0, 0, Param::kPan, Q16_16::FromInt(100)));
+      // Half: square law gives a quarter.
+      rig.mock->Inject(ParamChange::Level(0, 0, Param::kDimmer, Q1_15::FromRaw(16384)));
     }
   });
   ASSERT_TRUE(RunToEnd(rig.daemon).ok());

@@ -19,13 +19,13 @@ std::vector<FixturePatch> Fixtures(int32_t fade_ms, DimmerCurve curve) {
   return {f};
 }
 
+// A target for slot 0 ("spot"), `value` the raw integer of the parameter's format.
 ParamChange Target(Param param, int32_t value) {
-  ParamChange c;
-  std::snprintf(c.fixture, sizeof c.fixture, "spot");
-  c.param = param;
-  c.value = value;
-  return c;
+  return IsAngle(param) ? ParamChange::Angle(0, 0, param, Q16_16::FromRaw(value))
+                        : ParamChange::Level(0, 0, param, Q1_15::FromRaw(static_cast<int16_t>(value)));
 }
+
+int32_t Raw(const ParamChange& c) { return IsAngle(c.param) ? c.degrees.raw() : c.level.raw(); }
 
 FixtureState Dark() {
   FixtureState s{};
@@ -35,7 +35,7 @@ FixtureState Dark() {
 // The value of `param` among the changes, or `fallback` if none.
 int32_t Find(const ParamChange* out, size_t n, Param param, int32_t fallback) {
   for (size_t i = 0; i < n; ++i) {
-    if (out[i].param == param) return out[i].value;
+    if (out[i].param == param) return Raw(out[i]);
   }
   return fallback;
 }
@@ -48,6 +48,37 @@ TEST(Fader, ResetReportsEveryParameterOnce) {
   EXPECT_EQ(fader.Step(1, out), 0u);
 }
 
+TEST(Fader, ZoomFadesInDegrees) {
+  Fader fader(Fixtures(1000, DimmerCurve::kLinear));
+  FixtureState start = Dark();
+  start.zoom_deg = Q16_16::FromInt(20);
+  fader.Reset(0, start);
+  ParamChange out[kParamCount];
+  EXPECT_EQ(Find(out, fader.Step(0, out), Param::kZoom, -1), 20 << 16);
+  ASSERT_TRUE(fader.SetTarget(Target(Param::kZoom, 40 << 16), 0));
+  const size_t n = fader.Step(500000, out);
+  ASSERT_EQ(n, 1u);
+  EXPECT_EQ(out[0].param, Param::kZoom);
+  EXPECT_EQ(out[0].degrees.raw(), 30 << 16);  // half way
+  EXPECT_EQ(out[0].fixture, 0);
+}
+
+TEST(Fader, ChangesAreTypedByTheirParameter) {
+  Fader fader(Fixtures(0, DimmerCurve::kLinear));
+  fader.Reset(0, Dark());
+  ParamChange out[kParamCount];
+  (void)fader.Step(0, out);
+  ASSERT_TRUE(fader.SetTarget(Target(Param::kTilt, -(7 << 16)), 1));
+  ASSERT_TRUE(fader.SetTarget(Target(Param::kGreen, 1234), 1));
+  ASSERT_EQ(fader.Step(1, out), 2u);
+  EXPECT_EQ(out[0].param, Param::kTilt);
+  EXPECT_EQ(out[0].degrees.raw(), -(7 << 16));
+  EXPECT_EQ(out[0].level.raw(), 0);
+  EXPECT_EQ(out[1].param, Param::kGreen);
+  EXPECT_EQ(out[1].level.raw(), 1234);
+  EXPECT_EQ(out[1].degrees.raw(), 0);
+}
+
 TEST(Fader, ZeroFadeJumps) {
   Fader fader(Fixtures(0, DimmerCurve::kLinear));
   fader.Reset(0, Dark());
@@ -55,9 +86,11 @@ TEST(Fader, ZeroFadeJumps) {
   (void)fader.Step(0, out);
   ASSERT_TRUE(fader.SetTarget(Target(Param::kPan, 90 << 16), 1000));
   ASSERT_EQ(fader.Step(1000, out), 1u);
-  EXPECT_EQ(out[0].value, 90 << 16);
+  EXPECT_EQ(Raw(out[0]), 90 << 16);
   EXPECT_TRUE(fader.Idle(1000));
-  EXPECT_FALSE(fader.SetTarget([] { ParamChange c; std::snprintf(c.fixture, sizeof c.fixture, "nope"); return c; }(), 0));
+  ParamChange no_slot = Target(Param::kPan, 0);
+  no_slot.fixture = 1;  // one slot only
+  EXPECT_FALSE(fader.SetTarget(no_slot, 0));
 }
 
 TEST(Fader, LinearRampInIntegerTime) {
@@ -95,7 +128,7 @@ TEST(Fader, RollRampsInDegreesLikePanAndTilt) {
   const size_t n = fader.Step(1000 + 100000, out);  // a quarter of the way: -30 + 120 / 4
   ASSERT_EQ(n, 1u);
   EXPECT_EQ(out[0].param, Param::kRoll);
-  EXPECT_EQ(out[0].value, 0);
+  EXPECT_EQ(Raw(out[0]), 0);
   EXPECT_FALSE(fader.Idle(1000 + 100000));
   EXPECT_EQ(Find(out, fader.Step(1000 + 400000, out), Param::kRoll, -1), 90 << 16);
   EXPECT_TRUE(fader.Idle(1000 + 400000));
@@ -116,7 +149,7 @@ TEST(Fader, SquareLawDimmerCurve) {
   (void)fader.Step(0, out);
   ASSERT_TRUE(fader.SetTarget(Target(Param::kDimmer, 16384), 10));
   ASSERT_EQ(fader.Step(10, out), 1u);
-  EXPECT_EQ(out[0].value, 8192);
+  EXPECT_EQ(Raw(out[0]), 8192);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
 #include <vector>
 
 #include "relight/hal/patch.h"
@@ -38,6 +39,12 @@ inline Patch LayoutPatch() {
   EXPECT_TRUE(resolved.ok()) << resolved.ToString();
   return patch;
 }
+
+// The test patches above list spot, then wash: their fixture indices.
+inline uint16_t FixtureIndexOf(const char* name) { return std::string(name) == "spot" ? 0 : 1; }
+
+// A change's value as the raw integer of its format (Q16.16 degrees or Q1.15 level).
+inline int32_t Raw(const ParamChange& c) { return IsAngle(c.param) ? c.degrees.raw() : c.level.raw(); }
 
 inline RegisterMap MapOf(const Patch& patch) {
   RegisterMap map;

@@ -61,9 +61,9 @@ TEST(MockSource, HoldingRegistersDecodeAsTheServerWould) {
   EXPECT_EQ(mock.holding_register(kRegRed), 0);  // a refused write changes nothing
   const std::vector<ParamChange> got = PollAll(mock, 200);
   ASSERT_EQ(got.size(), 1u);
-  EXPECT_STREQ(got[0].fixture, "spot");
+  EXPECT_EQ(got[0].fixture, testing::FixtureIndexOf("spot"));
   EXPECT_EQ(got[0].param, Param::kPan);
-  EXPECT_EQ(got[0].value, AngleQ16FromRegister(65535, 540 << 16));
+  EXPECT_EQ(testing::Raw(got[0]), AngleQ16FromRegister(65535, 540 << 16));
   EXPECT_EQ(got[0].time_us, 100);
 }
 
@@ -77,7 +77,7 @@ TEST(MockSource, ButtonDebounceTogglesOncePerPress) {
   std::vector<ParamChange> got = PollAll(mock, 22000);
   ASSERT_EQ(got.size(), 1u);
   EXPECT_EQ(got[0].param, Param::kDimmer);
-  EXPECT_EQ(got[0].value, 24575);  // on_level 0.75
+  EXPECT_EQ(testing::Raw(got[0]), 24575);  // on_level 0.75
   EXPECT_EQ(got[0].time_us, 22000);
   // A 5 ms glitch on release is ignored; the real release and next press switch off.
   ASSERT_TRUE(mock.SetLine("gpiochip0", 17, true, 100000).ok());
@@ -87,7 +87,7 @@ TEST(MockSource, ButtonDebounceTogglesOncePerPress) {
   ASSERT_TRUE(mock.SetLine("gpiochip0", 17, false, 400000).ok());
   got = PollAll(mock, 500000);
   ASSERT_EQ(got.size(), 1u);
-  EXPECT_EQ(got[0].value, 0);
+  EXPECT_EQ(testing::Raw(got[0]), 0);
 }
 
 TEST(MockSource, PresetButtonRecallsItsChanges) {
@@ -95,9 +95,9 @@ TEST(MockSource, PresetButtonRecallsItsChanges) {
   ASSERT_TRUE(mock.SetLine("gpiochip0", 18, false, 0).ok());
   const std::vector<ParamChange> got = PollAll(mock, 50000);
   ASSERT_EQ(got.size(), 2u);
-  EXPECT_STREQ(got[0].fixture, "wash");
+  EXPECT_EQ(got[0].fixture, testing::FixtureIndexOf("wash"));
   EXPECT_EQ(got[0].param, Param::kPan);
-  EXPECT_EQ(got[0].value, 45 << 16);
+  EXPECT_EQ(testing::Raw(got[0]), 45 << 16);
   EXPECT_EQ(got[1].param, Param::kDimmer);
 }
 
@@ -124,34 +124,32 @@ TEST(MockSource, EncoderQuadratureMovesTheDimmerAndClamps) {
   Turn(mock, 2, &t);  // +2 counts of 0.125 from 0.5
   std::vector<ParamChange> got = PollAll(mock, t);
   ASSERT_EQ(got.size(), 2u);
-  EXPECT_EQ(got[1].value, 16384 + 2 * 4096);
+  EXPECT_EQ(testing::Raw(got[1]), 16384 + 2 * 4096);
   Turn(mock, -1, &t);
   got = PollAll(mock, t);
   ASSERT_EQ(got.size(), 1u);
-  EXPECT_EQ(got[0].value, 16384 + 4096);
+  EXPECT_EQ(testing::Raw(got[0]), 16384 + 4096);
   Turn(mock, 20, &t);  // past full: clamps at 1.0 and stops reporting
   got = PollAll(mock, t);
-  EXPECT_EQ(got.back().value, 32767);
+  EXPECT_EQ(testing::Raw(got.back()), 32767);
   EXPECT_LE(got.size(), 4u);
   // Down to 0 (clamped), then 3 counts up, which leaves both lines low (phase 00).
   Turn(mock, -20, &t);
   Turn(mock, 3, &t);
   got = PollAll(mock, t);
-  EXPECT_EQ(got.back().value, 3 * 4096);
+  EXPECT_EQ(testing::Raw(got.back()), 3 * 4096);
   // Contact bounce on B (up, down, up): +1 -1 +1 nets one count.
   ASSERT_TRUE(mock.SetLine("gpiochip0", 23, true, t++).ok());
   ASSERT_TRUE(mock.SetLine("gpiochip0", 23, false, t++).ok());
   ASSERT_TRUE(mock.SetLine("gpiochip0", 23, true, t++).ok());
   got = PollAll(mock, t);
   ASSERT_EQ(got.size(), 3u);
-  EXPECT_EQ(got.back().value, 4 * 4096);
+  EXPECT_EQ(testing::Raw(got.back()), 4 * 4096);
 }
 
 TEST(MockSource, InjectedChangesComeDueInTimeAndTheQueueIsBounded) {
   MockSource mock(GpioPatch());
-  ParamChange c;
-  std::snprintf(c.fixture, sizeof c.fixture, "spot");
-  c.time_us = 500;
+  ParamChange c = ParamChange::Level(500, testing::FixtureIndexOf("spot"), Param::kDimmer, Q1_15::FromRaw(100));
   mock.Inject(c);
   EXPECT_TRUE(PollAll(mock, 499).empty());
   EXPECT_EQ(PollAll(mock, 500).size(), 1u);

@@ -86,7 +86,7 @@ TEST(ModbusPoller, ReadsMappedRegistersKeepsStateWhenThePeerGoesAndReconnects) {
   const auto value_of = [](const std::vector<ParamChange>& s, const char* fixture, Param param) {
     int32_t v = -1;
     for (const ParamChange& c : s) {
-      if (std::strcmp(c.fixture, fixture) == 0 && c.param == param) v = c.value;
+      if (c.fixture == testing::FixtureIndexOf(fixture) && c.param == param) v = testing::Raw(c);
     }
     return v;
   };
@@ -120,9 +120,9 @@ TEST(ModbusPoller, ReadsMappedRegistersKeepsStateWhenThePeerGoesAndReconnects) {
   const size_t more = poller.Poll(0, out, 16);
   seen.insert(seen.end(), out, out + more);
   ASSERT_EQ(seen.size(), 1u);
-  EXPECT_STREQ(seen[0].fixture, "wash");
+  EXPECT_EQ(seen[0].fixture, testing::FixtureIndexOf("wash"));
   EXPECT_EQ(seen[0].param, Param::kDimmer);
-  EXPECT_EQ(seen[0].value, 0);
+  EXPECT_EQ(testing::Raw(seen[0]), 0);
   EXPECT_EQ(poller.counters().connects, 2u);
   EXPECT_EQ(log.Count("modbus-poller: connected"), 2);
 }

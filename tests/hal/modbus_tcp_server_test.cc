@@ -66,13 +66,13 @@ TEST_F(ModbusTcp, WritesBecomeChangesAndReadBack) {
   // The answer comes after the write is handed over: the changes are there now.
   const std::vector<ParamChange> got = Drain();
   ASSERT_EQ(got.size(), 3u);  // spot r, g (b stays 0) and wash pan
-  EXPECT_STREQ(got[0].fixture, "spot");
+  EXPECT_EQ(got[0].fixture, testing::FixtureIndexOf("spot"));
   EXPECT_EQ(got[0].param, Param::kRed);
-  EXPECT_EQ(got[0].value, 32767);
+  EXPECT_EQ(testing::Raw(got[0]), 32767);
   EXPECT_EQ(got[1].param, Param::kGreen);
-  EXPECT_EQ(got[1].value, LevelQ15FromByte(128));
-  EXPECT_STREQ(got[2].fixture, "wash");
-  EXPECT_EQ(got[2].value, 45 << 16);
+  EXPECT_EQ(testing::Raw(got[1]), LevelQ15FromByte(128));
+  EXPECT_EQ(got[2].fixture, testing::FixtureIndexOf("wash"));
+  EXPECT_EQ(testing::Raw(got[2]), 45 << 16);
   EXPECT_GT(got[2].time_us, 0);
   uint16_t back[16] = {};
   ASSERT_EQ(modbus_read_registers(c.ctx(), 0, 16, back), 16);
@@ -89,9 +89,9 @@ TEST_F(ModbusTcp, WritesBecomeChangesAndReadBack) {
   const std::vector<ParamChange> more = Drain();
   ASSERT_EQ(more.size(), 2u);
   EXPECT_EQ(more[0].param, Param::kTilt);
-  EXPECT_EQ(more[0].value, -(135 << 16));
+  EXPECT_EQ(testing::Raw(more[0]), -(135 << 16));
   EXPECT_EQ(more[1].param, Param::kBlue);
-  EXPECT_EQ(more[1].value, LevelQ15FromByte(0x40));
+  EXPECT_EQ(testing::Raw(more[1]), LevelQ15FromByte(0x40));
 }
 
 TEST_F(ModbusTcp, IllegalAddressesAndValuesGetExceptionsAndChangeNothing) {
@@ -199,9 +199,9 @@ TEST_F(ModbusTcp, EightClientsAtOnceEndOnTheirLastWrites) {
       const bool last = done.load();
       const size_t n = server_->Poll(0, out.data(), out.size());
       for (size_t i = 0; i < n; ++i) {
-        const int f = std::strcmp(out[i].fixture, "spot") == 0 ? 0 : 1;
-        if (out[i].param == Param::kRed) shadow_red[f] = out[i].value;
-        if (out[i].param == Param::kPan) shadow_pan[f] = out[i].value;
+        const int f = out[i].fixture == testing::FixtureIndexOf("spot") ? 0 : 1;
+        if (out[i].param == Param::kRed) shadow_red[f] = testing::Raw(out[i]);
+        if (out[i].param == Param::kPan) shadow_pan[f] = testing::Raw(out[i]);
       }
       if (last && n == 0) break;
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
@@ -308,12 +308,12 @@ TEST(ModbusTcpLayout, CoarseFineBytesAndRollBecomeAngles) {
   got.resize(server.Poll(0, got.data(), got.size()));
   ASSERT_EQ(got.size(), 3u);  // one change per angle, not one per byte
   EXPECT_EQ(got[0].param, Param::kPan);
-  EXPECT_EQ(got[0].value, AngleQ16FromRegister(0xC427, 630 << 16));
-  EXPECT_LE(std::fabs(got[0].value / 65536.0 - (0xC427 - 32768.0) / 65536.0 * 630), 0.5 / 65536);
+  EXPECT_EQ(testing::Raw(got[0]), AngleQ16FromRegister(0xC427, 630 << 16));
+  EXPECT_LE(std::fabs(testing::Raw(got[0]) / 65536.0 - (0xC427 - 32768.0) / 65536.0 * 630), 0.5 / 65536);
   EXPECT_EQ(got[1].param, Param::kTilt);
-  EXPECT_LE(std::fabs(got[1].value / 65536.0 - (0x3FFF - 32768.0) / 65536.0 * 265), 0.5 / 65536);
+  EXPECT_LE(std::fabs(testing::Raw(got[1]) / 65536.0 - (0x3FFF - 32768.0) / 65536.0 * 265), 0.5 / 65536);
   EXPECT_EQ(got[2].param, Param::kRoll);
-  EXPECT_EQ(got[2].value, -(22 << 16) - 32768);
+  EXPECT_EQ(testing::Raw(got[2]), -(22 << 16) - 32768);
   // A fine byte above 255 is refused whole; the fine byte alone moves the pan by one step.
   const uint16_t bad[2] = {0xC4, 0x100};
   EXPECT_EQ(modbus_write_registers(c.ctx(), 1, 2, bad), -1);
@@ -323,7 +323,7 @@ TEST(ModbusTcpLayout, CoarseFineBytesAndRollBecomeAngles) {
   got.assign(16, ParamChange());
   got.resize(server.Poll(0, got.data(), got.size()));
   ASSERT_EQ(got.size(), 1u);
-  EXPECT_EQ(got[0].value, AngleQ16FromRegister(0xC428, 630 << 16));
+  EXPECT_EQ(testing::Raw(got[0]), AngleQ16FromRegister(0xC428, 630 << 16));
   EXPECT_EQ(server.counters().illegal_value, 1u);
 }
 

@@ -299,6 +299,12 @@ inline void ExpectBakesEqual(const Bake& a, const Bake& b) {
     EXPECT_EQ(x.roll, y.roll);
     EXPECT_EQ(x.pan_range, y.pan_range);
     EXPECT_EQ(x.tilt_range, y.tilt_range);
+    EXPECT_EQ(x.zoom.min_deg, y.zoom.min_deg);
+    EXPECT_EQ(x.zoom.max_deg, y.zoom.max_deg);
+    EXPECT_EQ(x.zoom.default_deg, y.zoom.default_deg);
+    EXPECT_EQ(x.zoom.lumens, y.zoom.lumens);
+    EXPECT_EQ(x.zoom.profile_end, y.zoom.profile_end);
+    EXPECT_EQ(x.zoom.profile, y.zoom.profile);
     ASSERT_EQ(x.receivers.size(), y.receivers.size());
     for (size_t s = 0; s < x.receivers.size(); ++s) {
       SCOPED_TRACE("receiver set " + std::to_string(s));

@@ -42,7 +42,8 @@ TEST(ReplayPlan, TooManyFramesOrABadFpsIsAClearError) {
 
 TEST(ReplayPlan, TheLongScriptFixtureIsRefusedBeforeAnyFrame) {
   hal::ReplaySource source(std::string(RELIGHT_SOURCE_DIR) +
-                           "/fixtures/malformed/replay_long_time.replay");
+                           "/fixtures/malformed/replay_long_time.replay",
+                           {"ceiling_spot"});
   ASSERT_TRUE(source.Start().ok());
   EXPECT_EQ(source.duration_us(), int64_t{10000000} * 1000000);
   ReplayPlan plan;

@@ -15,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "dmx_changes.h"
 #include "relight/base/clock.h"
 #include "relight/base/log.h"
 
@@ -25,9 +26,8 @@ struct DmxOlaSource::Impl {
   DmxOlaConfig config;
   std::vector<unsigned> universes;           // distinct, from the patch
 
-  mutable std::mutex mu;                     // guards values, last_frame_us, ss
-  std::vector<DmxFixtureValues> values;      // one per patch fixture, sized once
-  std::vector<int64_t> last_frame_us;        // one per patch fixture; 0 = never
+  DmxChanges changes;                         // frames -> values -> changes (locks itself)
+  mutable std::mutex mu;                     // guards ss
   ola::io::SelectServer* ss = nullptr;       // the running loop, for Stop()
 
   std::condition_variable wake;
@@ -37,27 +37,18 @@ struct DmxOlaSource::Impl {
   std::unique_ptr<ola::client::OlaClientWrapper> first;  // connected by Start()
   std::thread thread;
 
-  Impl(DmxPatch p, DmxOlaConfig c) : patch(std::move(p)), config(c) {
+  Impl(DmxPatch p, DmxOlaConfig c) : patch(std::move(p)), config(c), changes(patch) {
     for (const DmxFixturePatch& f : patch.fixtures) {
       const auto u = static_cast<unsigned>(f.universe);
       if (std::find(universes.begin(), universes.end(), u) == universes.end()) universes.push_back(u);
     }
-    values.resize(patch.fixtures.size());
-    last_frame_us.resize(patch.fixtures.size(), 0);
   }
 
   // OLA thread. Frames hold only the data slots (start code 0 implied).
   void OnDmx(const ola::client::DMXMetadata& meta, const ola::DmxBuffer& data) {
-    frames.fetch_add(1, std::memory_order_relaxed);
     const int64_t now_us = MonotonicUs();
-    std::lock_guard<std::mutex> lock(mu);
-    for (size_t i = 0; i < patch.fixtures.size(); ++i) {
-      const DmxFixturePatch& f = patch.fixtures[i];
-      if (static_cast<unsigned>(f.universe) != meta.universe) continue;
-      if (DecodeDmxFrame(f.personality, f.address, kDmxNullStartCode, data.GetRaw(), data.Size(), &values[i])) {
-        last_frame_us[i] = now_us;
-      }
-    }
+    frames.fetch_add(1, std::memory_order_relaxed);
+    changes.OnFrame(meta.universe, data.GetRaw(), data.Size(), now_us);
   }
 
   void OnRegistered(unsigned universe, const ola::client::Result& result) {
@@ -138,9 +129,13 @@ Status DmxOlaSource::DoStart() {
   std::call_once(logging, [] { ola::InitLogging(ola::OLA_LOG_WARN, ola::OLA_LOG_STDERR); });
   auto wrapper = std::make_unique<ola::client::OlaClientWrapper>(false);  // never auto-start olad
   if (!wrapper->Setup()) {
-    return Status(StatusCode::kIoError,
-                  "dmx-ola: olad is not running (nothing answers on 127.0.0.1:9010); start it as a non-root user, "
-                  "e.g. `olad -c ~/.ola --no-http`, and enable its E1.31 or Art-Net plugin (docs/dmx.md)");
+    const char* why =
+        "dmx-ola: olad is not running (nothing answers on 127.0.0.1:9010); start it as a non-root user, "
+        "e.g. `olad -c ~/.ola --no-http`, and enable its E1.31 or Art-Net plugin (docs/dmx.md)";
+    if (!impl_->config.wait_for_olad) return Status(StatusCode::kIoError, why);
+    Log(LogLevel::kWarning, "%s; retrying every %d ms, the bake's look stays meanwhile", why,
+        impl_->config.reconnect_ms);
+    wrapper.reset();
   }
   impl_->stop.store(false);
   impl_->first = std::move(wrapper);
@@ -148,7 +143,9 @@ Status DmxOlaSource::DoStart() {
   return Status::Ok();
 }
 
-size_t DmxOlaSource::DoPoll(int64_t /*now_us*/, ParamChange* /*out*/, size_t /*capacity*/) { return 0; }
+size_t DmxOlaSource::DoPoll(int64_t now_us, ParamChange* out, size_t capacity) {
+  return impl_->changes.Collect(now_us, out, capacity);
+}
 
 void DmxOlaSource::DoStop() {
   if (!impl_->thread.joinable()) return;
@@ -162,18 +159,7 @@ void DmxOlaSource::DoStop() {
 }
 
 bool DmxOlaSource::LatestValues(size_t index, int64_t now_us, DmxFixtureValues* out) const {
-  std::lock_guard<std::mutex> lock(impl_->mu);
-  if (index >= impl_->values.size()) return false;
-  *out = impl_->values[index];
-  // Loss of signal. Holding the last look is the default because relight is
-  // a visualiser: a console rebooting or a network hiccup should not black
-  // out the picture someone is programming against, and most real fixtures
-  // hold their last DMX look too, so holding shows what the rig would do.
-  // "blackout" is for rooms where a lost console must mean dark.
-  const int64_t last = impl_->last_frame_us[index];
-  const bool lost = last == 0 || now_us - last > int64_t{impl_->patch.loss_timeout_ms} * 1000;
-  if (lost && last != 0 && impl_->patch.loss_policy == DmxLossPolicy::kBlackout) out->dimmer = Q1_15::FromRaw(0);
-  return true;
+  return impl_->changes.LatestValues(index, now_us, out);
 }
 
 bool DmxOlaSource::connected() const { return impl_->is_connected.load(); }

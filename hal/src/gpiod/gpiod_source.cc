@@ -24,7 +24,7 @@ struct GpiodSource::Impl {
   std::vector<gpiod_line*> lines;      // per decoder line
   std::vector<pollfd> fds;             // per line, sized at Start()
 
-  explicit Impl(const Patch& patch) : where(patch.where.empty() ? "patch" : patch.where), decoder(patch.buttons, patch.encoders) {}
+  explicit Impl(const Patch& patch) : where(patch.where.empty() ? "patch" : patch.where), decoder(patch) {}
 
   void Close() {
     for (gpiod_line* line : lines) {

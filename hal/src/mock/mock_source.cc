@@ -20,7 +20,7 @@ struct MockSource::Impl {
   uint32_t frames = 0, last_frame = 0, last_latency_us = 0;
 
   Impl(RegisterMap m, std::vector<uint16_t> initial, const Patch& patch, SourceClock c)
-      : map(std::move(m)), registers(map, std::move(initial)), gpio(patch.buttons, patch.encoders), clock(c) {}
+      : map(std::move(m)), registers(map, std::move(initial)), gpio(patch), clock(c) {}
 };
 
 namespace {

@@ -81,7 +81,7 @@ Status ResolvePatch(const std::vector<LuminaireConsole>& luminaires, Patch* patc
     if (b.action == ButtonAction::kToggle) {
       RELIGHT_RETURN_IF_ERROR(CheckFixture(*patch, luminaires, b.fixture, b.config_line, "gpio_button"));
     }
-    for (const ParamChange& c : b.preset) {
+    for (const NamedChange& c : b.preset) {
       RELIGHT_RETURN_IF_ERROR(CheckFixture(*patch, luminaires, c.fixture, b.config_line, "gpio_button preset"));
     }
   }

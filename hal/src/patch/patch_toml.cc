@@ -115,9 +115,10 @@ int32_t LevelQ15(double level) { return static_cast<int32_t>(std::lround(level *
 
 Param ParseParamName(const Table& t, const char* key, const std::string& name) {
   Param param = Param::kDimmer;
-  if (!ParamFromName(name, &param)) {
+  // Zoom is a beam angle a console sends, not a quantity an encoder steps from 0.
+  if (!ParamFromName(name, &param) || param == Param::kZoom) {
     t.Fail(t.Node(key),
-           std::string("'") + key + "' must be one of pan, tilt, roll, dimmer, r, g, b; got '" + name + "'");
+           std::string("'") + key + "' must be one of pan, tilt, roll, zoom, dimmer, r, g, b; got '" + name + "'");
   }
   return param;
 }
@@ -186,7 +187,7 @@ void ParseFixture(const Table& t, Patch* patch) {
   FixturePatch f;
   f.line = t.line();
   f.name = t.String("name", "", true);
-  ParamChange probe[3];
+  NamedChange probe[3];
   std::string error;
   if (ParseParamText(f.name + ".dimmer=0", 0, probe, &error) != 1) {
     t.Fail(t.Node("name"), "name '" + f.name + "' must be 1.." + std::to_string(kMaxFixtureName) +
@@ -323,7 +324,7 @@ void ParseButton(const Table& t, Patch* patch) {
     }
     for (const toml::node& item : *preset) {
       const auto text = item.value<std::string>();
-      ParamChange parsed[3];
+      NamedChange parsed[3];
       std::string error;
       const int n = item.is_string() ? ParseParamText(*text, 0, parsed, &error) : 0;
       if (n == 0) t.Fail(&item, "preset: " + (item.is_string() ? error : std::string("entries must be strings")));

@@ -11,7 +11,8 @@
 
 namespace relight::hal {
 
-Status ParseReplayScript(const std::string& text, const std::string& where, std::vector<ParamChange>* out) {
+Status ParseReplayScript(const std::string& text, const std::string& where, const std::vector<std::string>& fixtures,
+                         std::vector<ParamChange>* out) {
   std::vector<ParamChange> changes;
   std::istringstream lines(text);
   std::string line;
@@ -44,11 +45,16 @@ Status ParseReplayScript(const std::string& text, const std::string& where, std:
     std::string item;
     int items = 0;
     while (words >> item) {
-      ParamChange parsed[3];
+      NamedChange parsed[3];
       std::string error;
       const int n = ParseParamText(item, time_us, parsed, &error);
       if (n == 0) return fail(error);
-      changes.insert(changes.end(), parsed, parsed + n);
+      const int index = FixtureIndex(fixtures, parsed[0].fixture);
+      if (index < 0) return fail("no fixture '" + parsed[0].fixture + "' (there are: " + FixtureList(fixtures) + ")");
+      for (int i = 0; i < n; ++i) {
+        changes.push_back(parsed[i].change);
+        changes.back().fixture = static_cast<uint16_t>(index);
+      }
       ++items;
     }
     if (items == 0) return fail("a time needs at least one FIXTURE.PARAM=VALUE after it");
@@ -75,7 +81,7 @@ Status ReplaySource::DoStart() {
   }
   std::fclose(f);
   next_ = 0;
-  return ParseReplayScript(text, path_, &changes_);
+  return ParseReplayScript(text, path_, fixtures_, &changes_);
 }
 
 size_t ReplaySource::DoPoll(int64_t now_us, ParamChange* out, size_t capacity) {

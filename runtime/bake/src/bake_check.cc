@@ -242,7 +242,8 @@ std::string CheckLuminaire(const BakeLuminaire& lum) {
   if (lum.tilt_range <= 0 || lum.tilt_range > kMaxTiltRangeRaw) {
     return StrFormat("tilt range %d (Q16.16 degrees) is outside (0, 360]", lum.tilt_range);
   }
-  return CheckLidTable(lum.lid, lum.sh_degree);
+  e = CheckLidTable(lum.lid, lum.sh_degree);
+  return e.empty() ? CheckZoom(lum.zoom, lum.lid) : e;
 }
 
 std::string CheckLidTable(const BakeLid& lid, int sh_degree) {

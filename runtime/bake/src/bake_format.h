@@ -1,4 +1,4 @@
-// On-disk layout of a bake file, format version 3: the constants the writer
+// On-disk layout of a bake file, format version 4: the constants the writer
 // and the reader share. docs/bake-format.md is the specification; keep the
 // two in step. Private to the runtime.
 #pragma once
@@ -15,7 +15,7 @@ namespace relight::bake_format {
 
 // --- File header (28 bytes) and table of contents (36 bytes per section).
 inline constexpr uint8_t kMagic[8] = {'R', 'E', 'L', 'I', 'G', 'H', 'T', '\0'};
-inline constexpr uint32_t kVersion = 3;
+inline constexpr uint32_t kVersion = 4;
 // Version 1 files still read: their LUMI sections end after the LID samples
 // (no orientation, ranges or (C, gamma) table; defaults apply).
 inline constexpr uint32_t kOldestVersion = 1;
@@ -23,6 +23,9 @@ inline constexpr uint32_t kOldestVersion = 1;
 // hierarchy, so readers that predate HIER and LINK still read those files.
 inline constexpr uint32_t kVersionWithoutHierarchy = 2;
 inline constexpr uint32_t kFirstVersionWithHierarchy = 3;
+// Version 4: every LUMI ends with the zoom tail (its profile count 0 when the
+// luminaire has no zoom). Written only when some luminaire zooms.
+inline constexpr uint32_t kFirstVersionWithZoom = 4;
 inline constexpr size_t kVersionOffset = 8;
 inline constexpr size_t kSectionCountOffset = 12;
 inline constexpr size_t kFileSizeOffset = 16;
@@ -93,6 +96,9 @@ inline constexpr uint64_t kGridBytesPerPoint = 3 * 4 + 3 * 2;
 inline constexpr uint64_t kLumiFixedBytes = 3 * 4 + 4 * 1 + 2 * 4 + 4 * 2 + 4;
 // Version 2 tail: yaw, roll, pan and tilt range, plane and gamma counts, SH count.
 inline constexpr uint64_t kLumiTailFixedBytes = 4 * 4 + 2 * 4 + 4;
+// Version 4 tail: profile count; then min, max, default, lumens, profile end.
+inline constexpr uint64_t kLumiZoomFixedBytes = 4 + 3 * 4 + 8 + 4;
+inline constexpr uint64_t kMaxLumiZoomBytes = kLumiZoomFixedBytes + 4 * uint64_t{kMaxZoomProfileSamples};
 inline constexpr uint64_t kScaleBytes = 8;  // i32 mantissa, i32 exponent
 inline constexpr uint64_t kDirectBytesPerReceiver = 3 * 2 + 4;
 inline constexpr uint64_t kBasisBytesPerValue = 2;

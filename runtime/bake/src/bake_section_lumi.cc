@@ -1,5 +1,6 @@
 // Section LUMI: one luminaire (name, pose, modes, defaults, LID; version 2 on: orientation,
-// console ranges, the (C, gamma) table and its SH coefficients).
+// console ranges, the (C, gamma) table and its SH coefficients; version 4 on:
+// the zoom, bake_lumi_zoom.cc).
 // Encoder and decoder side by side, field order as in docs/bake-format.md.
 #include <string>
 #include <utility>
@@ -55,7 +56,7 @@ Status DecodeLuminaireTail(ContainerReader* in, const std::string& label, ByteRe
 
 }  // namespace
 
-void EncodeLuminaire(const BakeLuminaire& lum, std::vector<uint8_t>* out) {
+void EncodeLuminaire(const BakeLuminaire& lum, uint32_t version, std::vector<uint8_t>* out) {
   ByteWriter w(out);
   w.PutString(lum.name);
   for (int32_t v : lum.position) w.Put(v);
@@ -81,15 +82,19 @@ void EncodeLuminaire(const BakeLuminaire& lum, std::vector<uint8_t>* out) {
   for (int64_t v : lum.lid.table) w.Put(v);
   w.Put(static_cast<uint32_t>(lum.lid.sh.size()));
   for (int64_t v : lum.lid.sh) w.Put(v);
+  if (version >= kFirstVersionWithZoom) EncodeLuminaireZoom(lum.zoom, &w);
 }
 
 Status DecodeLuminaire(ContainerReader* in, const Counts& counts, uint32_t l, Bake* bake) {
   const std::string label = StrFormat("section LUMI[%u]", l);
   const size_t index = 2 + counts.grids + l;
   const bool tail = in->version() >= 2;
-  RELIGHT_RETURN_IF_ERROR(
-      in->Expect(index, kTagLumi, label, LumiBytes(1, kMinLidSamples) + (tail ? kLumiTailFixedBytes : 0),
-             LumiBytes(kMaxNameBytes, kMaxLidSamples) + (tail ? kMaxLumiTailBytes : 0)));
+  const bool zoom = in->version() >= kFirstVersionWithZoom;
+  RELIGHT_RETURN_IF_ERROR(in->Expect(
+      index, kTagLumi, label,
+      LumiBytes(1, kMinLidSamples) + (tail ? kLumiTailFixedBytes : 0) + (zoom ? 4 : 0),
+      LumiBytes(kMaxNameBytes, kMaxLidSamples) + (tail ? kMaxLumiTailBytes : 0) +
+          (zoom ? kMaxLumiZoomBytes : 0)));
   ByteReader r(nullptr, 0);
   RELIGHT_RETURN_IF_ERROR(in->Load(index, label, &r));
   BakeLuminaire lum;
@@ -113,6 +118,7 @@ Status DecodeLuminaire(ContainerReader* in, const Counts& counts, uint32_t l, Ba
   lum.lid.candela.resize(samples);
   for (int64_t& cd : lum.lid.candela) cd = r.Get<int64_t>("LID");
   if (tail) RELIGHT_RETURN_IF_ERROR(DecodeLuminaireTail(in, label, &r, &lum));
+  if (zoom) RELIGHT_RETURN_IF_ERROR(DecodeLuminaireZoom(in, label, &r, &lum.zoom));
   RELIGHT_RETURN_IF_ERROR(in->Finish(r, label));
   const std::string e = CheckLuminaire(lum);
   if (!e.empty()) return in->Corrupt(label, e);

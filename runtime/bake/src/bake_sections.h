@@ -30,9 +30,16 @@ void EncodeGrid(const BakeGrid& grid, std::vector<uint8_t>* out);
 // Appends grid g to bake->grids.
 Status DecodeGrid(ContainerReader* in, const Counts& counts, uint32_t g, Bake* bake);
 
-void EncodeLuminaire(const BakeLuminaire& lum, std::vector<uint8_t>* out);
+// `version`: the file's; from 4 on the LUMI ends with the zoom tail.
+void EncodeLuminaire(const BakeLuminaire& lum, uint32_t version, std::vector<uint8_t>* out);
 // Appends luminaire l (without receivers) to bake->luminaires.
 Status DecodeLuminaire(ContainerReader* in, const Counts& counts, uint32_t l, Bake* bake);
+
+// LUMI's version 4 tail (bake_lumi_zoom.cc): the profile count, then, if
+// not 0, the zoom's angles, lumens and profile. Checks counts before allocating.
+void EncodeLuminaireZoom(const BakeZoom& zoom, ByteWriter* w);
+Status DecodeLuminaireZoom(ContainerReader* in, const std::string& label, ByteReader* r,
+                           BakeZoom* zoom);
 
 void EncodeDirect(const BakeLightReceivers& rec, std::vector<uint8_t>* out);
 Status DecodeDirect(ContainerReader* in, size_t index, const std::string& label, DirectMode mode,

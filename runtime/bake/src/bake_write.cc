@@ -25,10 +25,19 @@ uint32_t SectionCount(const Bake& bake) {
   return n + (bake.hierarchy ? 2 : 0);
 }
 
+// The lowest version that holds the bake, so older readers read what they can.
+uint32_t FileVersion(const Bake& bake) {
+  for (const BakeLuminaire& lum : bake.luminaires) {
+    if (lum.zoom.present()) return kFirstVersionWithZoom;
+  }
+  return bake.hierarchy ? kFirstVersionWithHierarchy : kVersionWithoutHierarchy;
+}
+
 // Writes every section in TOC order behind the space for the header and TOC,
 // then them. Returns false with errno set on an I/O failure.
 bool WriteSections(const Bake& bake, int fd, std::vector<BakeSectionSize>* sizes) {
   const uint32_t sections = SectionCount(bake);
+  const uint32_t version = FileVersion(bake);
   SectionSink sink(fd, kHeaderBytes + kTocEntryBytes * sections);
   std::vector<uint8_t> raw;
   auto add = [&](uint32_t tag, auto encode) {
@@ -42,7 +51,7 @@ bool WriteSections(const Bake& bake, int fd, std::vector<BakeSectionSize>* sizes
     ok = ok && add(kTagGrid, [&](std::vector<uint8_t>* o) { EncodeGrid(grid, o); });
   }
   for (const BakeLuminaire& lum : bake.luminaires) {
-    ok = ok && add(kTagLumi, [&](std::vector<uint8_t>* o) { EncodeLuminaire(lum, o); });
+    ok = ok && add(kTagLumi, [&](std::vector<uint8_t>* o) { EncodeLuminaire(lum, version, o); });
   }
   for (const BakeLuminaire& lum : bake.luminaires) {
     for (const BakeLightReceivers& rec : lum.receivers) {
@@ -59,7 +68,6 @@ bool WriteSections(const Bake& bake, int fd, std::vector<BakeSectionSize>* sizes
   }
   if (!ok) return false;
   RELIGHT_CHECK(sink.toc().size() == sections);
-  const uint32_t version = bake.hierarchy ? kFirstVersionWithHierarchy : kVersionWithoutHierarchy;
   const std::vector<uint8_t> header = EncodeHeader(version, sink.toc(), sink.end());
   if (!WriteAt(fd, header.data(), header.size(), 0)) return false;
   if (sizes) {

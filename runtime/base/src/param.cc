@@ -11,6 +11,7 @@ const char* ParamName(Param param) {
     case Param::kGreen: return "g";
     case Param::kBlue: return "b";
     case Param::kRoll: return "roll";
+    case Param::kZoom: return "zoom";
   }
   return "?";
 }

@@ -7,16 +7,16 @@
 
 #include "relight/base/clock.h"
 #include "relight/base/log.h"
+#include "relight/control/engine_binding.h"
+#include "relight/hal/dmx/dmx_replay_source.h"
+#include "relight/hal/dmx/ola_source.h"
 #include "relight/hal/replay_source.h"
 #include "relight/hal/source_factory.h"
-#include "set_args.h"
 
 namespace relight::daemon {
 
 
 namespace {
-
-constexpr size_t kPollBatch = 256;
 
 // The holding registers that show the engine's state, for the servers' start.
 std::vector<uint16_t> RegistersFor(const Engine& engine, const hal::RegisterMap& map) {
@@ -51,25 +51,67 @@ struct Daemon::Impl {
   Engine engine;
   hal::Patch patch;
   hal::RegisterMap map;
-  std::unique_ptr<control::Fader> fader;
+  control::ChangePath path;
   std::vector<std::unique_ptr<hal::InputSource>> patch_sources;  // replaced on reload
   std::unique_ptr<hal::ReplaySource> replay;
+  std::unique_ptr<hal::InputSource> dmx;      // DMX through olad, or a DMX replay; kept across patch reloads
+  std::vector<uint16_t> dmx_luminaires;       // DMX patch fixture -> engine luminaire
+  bool dmx_is_replay = false;
   std::vector<std::unique_ptr<hal::InputSource>> extra_sources;
+  std::vector<control::BoundInput> inputs;  // every source with its index table; rebuilt when sources change
   std::vector<std::unique_ptr<FrameSink>> sinks;
   cli::FramePipeline pipeline;
   std::function<void(const FrameInfo&)> observer;
   DaemonStats stats;
   int64_t period_us = 33333;
-  std::vector<ParamChange> batch = std::vector<ParamChange>(kPollBatch);
-  std::vector<ParamChange> outputs;
-  int unknown_fixture_warnings = 0;
 
   std::vector<hal::InputSource*> AllSources() const {
     std::vector<hal::InputSource*> all;
-    for (const auto& s : patch_sources) all.push_back(s.get());
-    if (replay) all.push_back(replay.get());
-    for (const auto& s : extra_sources) all.push_back(s.get());
+    for (const control::BoundInput& in : inputs) all.push_back(in.source);
     return all;
+  }
+
+  // Patch sources and extra ones (mocks made from the patch) index the
+  // patch's fixtures; the replay indexes the bake's luminaires.
+  void BindInputs() {
+    inputs.clear();
+    for (const auto& s : patch_sources) inputs.push_back({s.get(), path.patch_luminaires()});
+    if (replay) inputs.push_back({replay.get(), {}});
+    if (dmx) inputs.push_back({dmx.get(), dmx_luminaires});
+    for (const auto& s : extra_sources) inputs.push_back({s.get(), path.patch_luminaires()});
+  }
+
+  // The finite scripts (replay, DMX replay) are all played out.
+  bool ScriptsFinished() const {
+    return (!replay || replay->Finished()) && (!dmx || !dmx_is_replay || dmx->Finished());
+  }
+
+  // The DMX patch: its fixture names bound to the bake's luminaires once,
+  // here; a name the bake lacks is an error naming the patch's file:line.
+  Status OpenDmx() {
+    hal::DmxPatch dmx_patch;
+    RELIGHT_RETURN_IF_ERROR(hal::LoadDmxPatch(config.dmx_patch_path, &dmx_patch));
+    if (dmx_patch.fixtures.size() > static_cast<size_t>(kMaxFixtures)) {
+      return Status(StatusCode::kInvalidArgument, config.dmx_patch_path + ": more than 65535 fixtures");
+    }
+    std::vector<uint16_t> luminaires;
+    for (const hal::DmxFixturePatch& f : dmx_patch.fixtures) {
+      std::vector<uint16_t> one;
+      RELIGHT_RETURN_IF_ERROR(control::BindNames(
+          engine, {f.name}, config.dmx_patch_path + ":" + std::to_string(f.line) + ": dmx_fixture", &one));
+      luminaires.push_back(one[0]);
+    }
+    dmx_luminaires = std::move(luminaires);
+    dmx_is_replay = !config.dmx_replay_path.empty();
+    if (dmx_is_replay) {
+      dmx = std::make_unique<hal::DmxReplaySource>(std::move(dmx_patch), config.dmx_replay_path);
+    } else {
+      hal::DmxOlaConfig ola;
+      ola.wait_for_olad = true;  // say so and keep trying: the console's olad may come later
+      dmx = std::make_unique<hal::DmxOlaSource>(std::move(dmx_patch), ola);
+    }
+    BindInputs();
+    return Status::Ok();
   }
 
   // Builds the map, fader and live sources of `p` (resolved). Does not start them.
@@ -80,16 +122,13 @@ struct Daemon::Impl {
     live.replay_script.clear();  // the replay belongs to the daemon, not to reloads
     std::vector<std::unique_ptr<hal::InputSource>> sources;
     RELIGHT_RETURN_IF_ERROR(hal::MakeInputSources(live, new_map, RegistersFor(engine, new_map), "", &sources));
-    auto new_fader = std::make_unique<control::Fader>(p.fixtures);
-    for (int f = 0; f < new_fader->slot_count(); ++f) {
-      new_fader->Reset(f, engine.state(engine.FindLuminaire(p.fixtures[static_cast<size_t>(f)].name)));
-    }
-    if (fader) new_fader->CopyRampsFrom(*fader);
+    control::ChangePath new_path;
+    RELIGHT_RETURN_IF_ERROR(new_path.Bind(&engine, p.fixtures, &path));
     patch = std::move(p);
     map = std::move(new_map);
-    fader = std::move(new_fader);
+    path = std::move(new_path);
     patch_sources = std::move(sources);
-    outputs.assign(static_cast<size_t>(fader->slot_count()) * kParamCount, ParamChange());
+    BindInputs();
     return Status::Ok();
   }
 
@@ -151,37 +190,19 @@ struct Daemon::Impl {
   // arrival among live changes (0: none).
   int64_t PollInputs(int64_t time_us, bool live_only) {
     int64_t newest_arrival = 0;
-    for (hal::InputSource* source : AllSources()) {
-      if (live_only && source->clock() != hal::SourceClock::kMonotonic) continue;
-      const int64_t now = source->clock() == hal::SourceClock::kScript ? time_us : MonotonicUs();
-      size_t n;
-      do {
-        n = source->Poll(now, batch.data(), batch.size());
-        for (size_t i = 0; i < n; ++i) {
-          const ParamChange& c = batch[i];
-          if (!fader->SetTarget(c, time_us)) {
-            if (unknown_fixture_warnings++ < 5) {
-              Log(LogLevel::kWarning, "relightd: %s: no fixture '%s' in the bake; change ignored", source->Name(),
-                  c.fixture);
-            }
-            continue;
-          }
-          if (source->clock() == hal::SourceClock::kMonotonic && c.time_us > newest_arrival) newest_arrival = c.time_us;
-        }
-      } while (n == batch.size());
+    for (const control::BoundInput& input : inputs) {
+      const hal::SourceClock clock = input.source->clock();
+      if (live_only && clock != hal::SourceClock::kMonotonic) continue;
+      const int64_t now = clock == hal::SourceClock::kScript ? time_us : MonotonicUs();
+      const int64_t newest = path.Poll(input, now, time_us);
+      if (clock == hal::SourceClock::kMonotonic && newest > newest_arrival) newest_arrival = newest;
     }
     return newest_arrival;
   }
 
   // Applies what the fader moved; returns how many parameters changed.
   size_t ApplyFader(int64_t time_us) {
-    const size_t n = fader->Step(time_us, outputs.data());
-    for (size_t i = 0; i < n; ++i) {
-      std::string error;
-      if (!cli::ApplyChange(engine, outputs[i], &error)) {
-        Log(LogLevel::kError, "relightd: %s", error.c_str());
-      }
-    }
+    const size_t n = path.Apply(time_us);
     stats.changes_applied += static_cast<int64_t>(n);
     return n;
   }
@@ -236,9 +257,17 @@ Status Daemon::Open(const DaemonConfig& config) {
   RELIGHT_RETURN_IF_ERROR(m.LoadResolved(&p));
   const std::string script = config.replay_path.empty() ? p.replay_script : config.replay_path;
   RELIGHT_RETURN_IF_ERROR(m.Adopt(std::move(p)));
-  if (!script.empty()) m.replay = std::make_unique<hal::ReplaySource>(script);
-  if (config.exit_when_replay_done && !m.replay) {
-    return Status(StatusCode::kInvalidArgument, "--exit-when-replay-done needs a replay script (--replay or [replay])");
+  if (!script.empty()) {
+    m.replay = std::make_unique<hal::ReplaySource>(script, control::LuminaireNames(m.engine));
+    m.BindInputs();
+  }
+  if (!config.dmx_replay_path.empty() && config.dmx_patch_path.empty()) {
+    return Status(StatusCode::kInvalidArgument, "--dmx-replay needs the DMX patch (--dmx PATCH.toml)");
+  }
+  if (!config.dmx_patch_path.empty()) RELIGHT_RETURN_IF_ERROR(m.OpenDmx());
+  if (config.exit_when_replay_done && !m.replay && !m.dmx_is_replay) {
+    return Status(StatusCode::kInvalidArgument,
+                  "--exit-when-replay-done needs a replay script (--replay, [replay] or --dmx-replay)");
   }
   CameraView view = cli::CameraFromBake(m.engine.bake().camera);
   for (int i = 0; i < 3; ++i) {
@@ -250,7 +279,10 @@ Status Daemon::Open(const DaemonConfig& config) {
 }
 
 void Daemon::AddSink(std::unique_ptr<FrameSink> sink) { impl_->sinks.push_back(std::move(sink)); }
-void Daemon::AddSource(std::unique_ptr<hal::InputSource> source) { impl_->extra_sources.push_back(std::move(source)); }
+void Daemon::AddSource(std::unique_ptr<hal::InputSource> source) {
+  impl_->extra_sources.push_back(std::move(source));
+  impl_->BindInputs();
+}
 void Daemon::SetFrameObserver(std::function<void(const FrameInfo&)> observer) { impl_->observer = std::move(observer); }
 
 Status Daemon::Start() { return Impl::StartAll(impl_->AllSources()); }
@@ -299,7 +331,7 @@ Status Daemon::Run(const std::atomic<bool>& stop, std::atomic<bool>& reload) {
       m.stats.last_latency_us = static_cast<uint32_t>(latency < 0 ? 0 : latency > 0xFFFFFFFF ? 0xFFFFFFFF : latency);
       pending_arrival_us = 0;
     }
-    for (hal::InputSource* s : m.AllSources()) s->OnFrameOut(static_cast<uint32_t>(frame + 1), m.stats.last_latency_us);
+    for (const control::BoundInput& in : m.inputs) in.source->OnFrameOut(static_cast<uint32_t>(frame + 1), m.stats.last_latency_us);
     ++m.stats.frames;
     if (early) ++m.stats.early_frames;
     m.stats.render_us_total += render_us;
@@ -307,7 +339,7 @@ Status Daemon::Run(const std::atomic<bool>& stop, std::atomic<bool>& reload) {
     if (m.observer) m.observer({frame, early ? -1 : tick, render_us, out_us, shown_arrival_us});
 
     if (m.config.max_frames > 0 && frame + 1 >= m.config.max_frames) break;
-    if (!early && m.config.exit_when_replay_done && m.replay->Finished() && m.fader->Idle(time_us)) break;
+    if (!early && m.config.exit_when_replay_done && m.ScriptsFinished() && m.path.Idle(time_us)) break;
     if (early) continue;  // the tick is still to come
     ++tick;
     if (!m.config.script_time) {

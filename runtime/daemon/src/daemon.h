@@ -34,7 +34,7 @@
 #include "frame_pipeline.h"
 #include "frame_sink.h"
 #include "relight/engine/engine.h"
-#include "relight/control/fader.h"
+#include "relight/control/change_path.h"
 #include "relight/hal/input_source.h"
 #include "relight/hal/patch.h"
 #include "relight/hal/register_map.h"
@@ -45,11 +45,13 @@ struct DaemonConfig {
   std::string bake_path;
   std::string patch_path;     // empty: every luminaire with defaults, no live inputs
   std::string replay_path;    // empty: the patch's [replay] script, if any
+  std::string dmx_patch_path;   // DMX patch (TOML): live DMX through olad, or the DMX replay below
+  std::string dmx_replay_path;  // with dmx_patch_path: play this recording (dmx_replay_source.h) instead of olad
   int modbus_port = -1;       // >= 0: serve Modbus TCP on 127.0.0.1 at this port (0: any) even without [modbus_tcp]
   int width = 1280, height = 720;
   double fps = 30;
   bool script_time = false;   // no waiting: frame k shows script time k/fps (reproducible runs)
-  bool exit_when_replay_done = false;  // after the frame that shows the replay's last change (and its fade)
+  bool exit_when_replay_done = false;  // after the frame that shows the replay's (or DMX replay's) last change and fade
   int64_t max_frames = 0;     // 0: no limit
   // Camera: the bake's, with any of these replacing its part.
   std::optional<std::array<float, 3>> camera_pos, camera_target;  // metres

@@ -1,7 +1,5 @@
 #include "relight/control/fader.h"
 
-#include <cstring>
-
 namespace relight::control {
 
 int32_t ApplyDimmerCurve(hal::DimmerCurve curve, int32_t level_q15) {
@@ -15,6 +13,7 @@ int32_t ApplyDimmerCurve(hal::DimmerCurve curve, int32_t level_q15) {
 }
 
 Fader::Fader(const std::vector<hal::FixturePatch>& fixtures) : slots_(fixtures.size()) {
+  // Slots are uint16_t indices (param.h kMaxFixtures); the patch and DMX readers keep below that.
   for (size_t i = 0; i < fixtures.size(); ++i) slots_[i].patch = fixtures[i];
 }
 
@@ -22,7 +21,7 @@ void Fader::Reset(int slot, const FixtureState& state) {
   Slot& s = slots_[static_cast<size_t>(slot)];
   const int32_t values[kParamCount] = {state.pan_deg.raw(), state.tilt_deg.raw(), state.dimmer.raw(),
                                        state.rgb[0].raw(),  state.rgb[1].raw(),  state.rgb[2].raw(),
-                                       state.roll_deg.raw()};  // in Param order
+                                       state.roll_deg.raw(), state.zoom_deg.raw()};  // in Param order
   for (int p = 0; p < kParamCount; ++p) {
     s.ramps[p] = Ramp();
     s.ramps[p].from = s.ramps[p].to = s.ramps[p].shown = values[p];
@@ -40,35 +39,32 @@ int32_t Fader::ValueAt(const Ramp& ramp, int64_t now_us) {
 }
 
 bool Fader::SetTarget(const ParamChange& change, int64_t now_us) {
-  for (Slot& s : slots_) {
-    if (std::strcmp(s.patch.name.c_str(), change.fixture) != 0) continue;
-    Ramp& r = s.ramps[static_cast<int>(change.param)];
-    r.from = ValueAt(r, now_us);
-    r.to = change.value;
-    r.start_us = now_us;
-    r.duration_us = int64_t{s.patch.fade_ms} * 1000;
-    return true;
-  }
-  return false;
+  if (change.fixture >= slots_.size() || static_cast<int>(change.param) >= kParamCount) return false;
+  Slot& s = slots_[change.fixture];
+  Ramp& r = s.ramps[static_cast<int>(change.param)];
+  r.from = ValueAt(r, now_us);
+  r.to = IsAngle(change.param) ? change.degrees.raw() : change.level.raw();
+  r.start_us = now_us;
+  r.duration_us = int64_t{s.patch.fade_ms} * 1000;
+  return true;
 }
 
 size_t Fader::Step(int64_t now_us, ParamChange* out) {
   size_t n = 0;
-  for (Slot& s : slots_) {
+  for (size_t slot = 0; slot < slots_.size(); ++slot) {
+    Slot& s = slots_[slot];
     for (int p = 0; p < kParamCount; ++p) {
       Ramp& r = s.ramps[p];
+      const Param param = static_cast<Param>(p);
       int32_t value = ValueAt(r, now_us);
-      if (static_cast<Param>(p) == Param::kDimmer) value = ApplyDimmerCurve(s.patch.dimmer_curve, value);
+      if (param == Param::kDimmer) value = ApplyDimmerCurve(s.patch.dimmer_curve, value);
       if (value == r.shown && !r.report) continue;
       r.shown = value;
       r.report = false;
-      ParamChange& c = out[n++];
-      c = ParamChange();
-      c.time_us = now_us;
-      const size_t len = s.patch.name.size() < kMaxFixtureName ? s.patch.name.size() : kMaxFixtureName;
-      std::memcpy(c.fixture, s.patch.name.data(), len);
-      c.param = static_cast<Param>(p);
-      c.value = value;
+      // A ramp between two Q1.15 levels stays within int16.
+      const uint16_t index = static_cast<uint16_t>(slot);
+      out[n++] = IsAngle(param) ? ParamChange::Angle(now_us, index, param, Q16_16::FromRaw(value))
+                                : ParamChange::Level(now_us, index, param, Q1_15::FromRaw(static_cast<int16_t>(value)));
     }
   }
   return n;

@@ -3,6 +3,8 @@
 //
 //   relightd room.rlb --patch patch.toml --fb /dev/fb0
 //   relightd room.rlb --replay show.replay --png frames/f_%04d.png --exit-when-replay-done
+//   relightd stage.rlb --dmx stage_patch.toml --fb /dev/fb0          # a console through olad
+//   relightd stage.rlb --dmx stage_patch.toml --dmx-replay stage.dmxrec --png f_%04d.png --exit-when-replay-done
 //
 // SIGINT/SIGTERM: clean shutdown. SIGHUP: re-read the patch. Logs on stderr.
 #include <csignal>
@@ -55,15 +57,22 @@ bool ParseVec3(const std::string& text, float out[3]) {
 int main(int argc, char** argv) {
   CLI::App app{
       "relightd: relight's real-time daemon. Reads fixture changes from the inputs the patch names\n"
-      "(Modbus TCP/RTU server, Modbus poller, GPIO) and from a replay script, relights the baked room\n"
+      "(Modbus TCP/RTU server, Modbus poller, GPIO), from a replay script and from DMX (--dmx: a\n"
+      "lighting console through olad, or --dmx-replay: a recorded show), relights the baked room\n"
       "and renders frames at a steady rate to the sinks given (--png, --ppm, --raw, --fb).\n"
-      "SIGINT/SIGTERM stop it cleanly; SIGHUP re-reads the patch. Register map: docs/modbus.md."};
+      "SIGINT/SIGTERM stop it cleanly; SIGHUP re-reads the patch. Register map: docs/modbus.md;\n"
+      "DMX, olad and consoles: docs/dmx.md."};
   relight::daemon::DaemonConfig config;
   std::string png, ppm, raw, fb, fb_size, sheet, camera_pos, camera_target;
   double fov = 0, white_cd_m2 = 0;
   app.add_option("bake", config.bake_path, "bake file written by relight-bake (.rlb)")->required();
   app.add_option("--patch", config.patch_path, "patch file (TOML): inputs, register blocks, ranges, curves, fades");
   app.add_option("--replay", config.replay_path, "replay script of timed changes (the simulated console)");
+  app.add_option("--dmx", config.dmx_patch_path,
+                 "DMX patch (TOML, docs/dmx.md): take DMX from olad (sACN, Art-Net, USB) for its universes; "
+                 "fixture names must be the bake's luminaires");
+  app.add_option("--dmx-replay", config.dmx_replay_path,
+                 "with --dmx: play this DMX recording (timestamped frames) instead of listening to olad");
   app.add_option("--modbus-port", config.modbus_port,
                  "serve Modbus TCP on 127.0.0.1:PORT even without [modbus_tcp] in the patch (0: any free port)")
       ->check(CLI::Range(0, 65535));

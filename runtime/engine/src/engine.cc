@@ -1,8 +1,9 @@
 // The run-time engine (see relight/engine.h), a facade over the data flow:
 //   Open:   ValidateBake (the bake layer's one set of rules and limits) ->
 //           SetUpLuminaires (luminaire.h: buffers, LIDs prepared, state);
-//   setters: fixture state; pan/tilt/roll/LID edits mark a luminaire dirty;
-//   Update: dirty, lit luminaires -> RecomputeLuminaireCacheQ12
+//   setters: fixture state; pan/tilt/roll/zoom/LID edits mark a luminaire dirty;
+//   Update: dirty, lit luminaires -> a pending zoom's LID samples and
+//           weights (zoom.h, ApplyZoom) -> RecomputeLuminaireCacheQ12
 //           (luminaire_cache.h) -> RemixQ12 (remix.h) per dimmer and colour
 //           -> + run-time surface emitters (surface_emitters.h).
 //
@@ -28,6 +29,7 @@
 #include "relight/base/fixed_ops.h"
 #include "remix.h"
 #include "surface_emitters.h"
+#include "zoom.h"
 
 namespace relight {
 
@@ -48,7 +50,13 @@ struct Engine::Impl {
     SizeOutputs(bake, &out, &mix);
     return emitters.Open(bake);
   }
+  void ApplyPendingZoom(size_t index) {
+    if (lums[index].zoom_pending) {
+      ApplyZoom(&bake.luminaires[index], &lums[index], work.zoom_samples_q16.data());
+    }
+  }
   Status EditLidSample(int index, int sample, int64_t candela_q16) {
+    ApplyPendingZoom(static_cast<size_t>(index));  // an edit changes the zoomed beam
     bool changed = false;
     RELIGHT_RETURN_IF_ERROR(relight::EditLidSample(&bake.luminaires[index], &lums[index], sample,
                                                    candela_q16, &changed));
@@ -74,6 +82,7 @@ void Engine::Impl::Update() {
   last_terms = 0;
   for (size_t i = 0; i < lums.size(); ++i) {
     if (!lums[i].dirty || !Lit(lums[i])) continue;
+    ApplyPendingZoom(i);
     last_terms += RecomputeLuminaireCacheQ12(bake, bake.luminaires[i], &work, &lums[i]);
     lums[i].dirty = false;
     ++last_luminaires;
@@ -183,6 +192,21 @@ Status Engine::SetRoll(int luminaire, Q16_16 roll_deg) {
   return Status::Ok();
 }
 
+Status Engine::SetZoom(int luminaire, Q16_16 beam_angle_deg) {
+  if (luminaire < 0 || luminaire >= luminaire_count()) return BadIndex();
+  const BakeZoom& zoom = impl_->bake.luminaires[luminaire].zoom;
+  if (!zoom.present()) return Status(StatusCode::kUnsupported, "no zoom");  // fits the buffer
+  LuminaireRuntime& l = impl_->lums[luminaire];
+  const Q16_16 angle = ClampZoomDegrees(zoom, beam_angle_deg);
+  if (angle != l.state.zoom_deg) {
+    l.state.zoom_deg = angle;
+    l.zoom_pending = true;
+    l.dirty = true;
+    impl_->remix = true;
+  }
+  return Status::Ok();
+}
+
 Status Engine::SetPanTilt16(int luminaire, uint16_t pan, uint16_t tilt) {
   if (luminaire < 0 || luminaire >= luminaire_count()) return BadIndex();
   const BakeLuminaire& b = impl_->bake.luminaires[luminaire];
@@ -245,6 +269,7 @@ Status Engine::SetLidControlPoints(int luminaire, const Q16_16* gamma_deg, const
 
 const int64_t* Engine::lid_samples(int luminaire, int* count) const {
   if (luminaire < 0 || luminaire >= luminaire_count()) return nullptr;
+  impl_->ApplyPendingZoom(static_cast<size_t>(luminaire));  // the samples of the zoom as set
   const BakeLid& lid = impl_->bake.luminaires[luminaire].lid;
   if (count != nullptr) *count = static_cast<int>(lid.candela.size());
   return lid.candela.data();

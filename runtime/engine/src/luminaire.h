@@ -28,6 +28,9 @@ struct SetCache {
 struct LuminaireRuntime {
   FixtureState state;
   bool dirty = true;
+  // A zoom set since the last Update(): the LID samples and weights follow
+  // state.zoom_deg when the luminaire is next rebuilt (ApplyZoom).
+  bool zoom_pending = false;
   int degree = 0;
   int lid_m = 0;
   int64_t damped_weights_q16[kMaxShDegree + 1] = {};
@@ -51,6 +54,7 @@ struct CacheWorkspace {
   std::vector<int64_t> alm_q30, coef_q16;      // per term
   std::vector<int32_t> k;                      // per term and channel
   std::vector<int64_t> scratch;                // recombine / mix blocks
+  std::vector<int64_t> zoom_samples_q16;       // M+1 of the largest zooming LID
   std::vector<uint32_t> reflectance_over_pi_q32;  // 3 per vertex
 };
 
@@ -73,5 +77,11 @@ Status SetUpLuminaires(const Bake& bake, std::vector<LuminaireRuntime>* lums,
 // (sample index), kOutOfRange (candela outside [0, kMaxCandelaRaw]).
 Status EditLidSample(BakeLuminaire* b, LuminaireRuntime* l, int sample, int64_t candela_q16,
                      bool* changed);
+
+// The LID samples of l->state.zoom_deg (zoom.h) into b->lid.candela, then
+// the Legendre weights from scratch (Eq. 19, not a chain of Eq. 21 updates,
+// so zooming back and forth never drifts) and their damping; clears
+// zoom_pending and marks the luminaire dirty. `samples` holds M+1 values.
+void ApplyZoom(BakeLuminaire* b, LuminaireRuntime* l, int64_t* samples);
 
 }  // namespace relight

@@ -8,6 +8,7 @@
 #include "relight/bake/bake_limits.h"
 #include "relight/engine/legendre_weights.h"
 #include "weights.h"
+#include "zoom.h"
 
 namespace relight {
 namespace {
@@ -48,12 +49,21 @@ Status PrepareLid(const BakeLuminaire& b, LuminaireRuntime* l) {
   return Status::Ok();
 }
 
+// The weights the kernels use: sigma-damped when the bake says so (Eq. 13).
+void DampWeights(const BakeLuminaire& b, LuminaireRuntime* l) {
+  for (int d = 0; d <= l->degree; ++d) {
+    l->damped_weights_q16[d] =
+        b.use_sigma != 0 ? SigmaDampedQ16(l->degree, d, l->weights_q16[d]) : l->weights_q16[d];
+  }
+}
+
 void SetDefaultState(const BakeLuminaire& b, FixtureState* s) {
   s->roll_deg = WrapDegrees(Q16_16::FromRaw(b.roll));
   s->pan_deg = WrapDegrees(Q16_16::FromRaw(b.default_pan));
   s->tilt_deg = WrapDegrees(Q16_16::FromRaw(b.default_tilt));
   s->dimmer = ClampUnit(Q1_15::FromRaw(b.default_dimmer));
   for (int c = 0; c < 3; ++c) s->rgb[c] = ClampUnit(Q1_15::FromRaw(b.default_rgb[c]));
+  s->zoom_deg = Q16_16::FromRaw(b.zoom.present() ? b.zoom.default_deg : 0);
 }
 
 }  // namespace
@@ -78,6 +88,7 @@ Status SetUpLuminaires(const Bake& bake, std::vector<LuminaireRuntime>* lums,
   const uint32_t block = max_count < kRecombineBlockReceivers ? max_count : kRecombineBlockReceivers;
   work->scratch.assign(static_cast<size_t>(block > 0 ? block : 1) * 3, 0);
   int max_terms = 1;
+  size_t max_zoom_samples = 0;
   lums->resize(bake.luminaires.size());
   for (size_t i = 0; i < lums->size(); ++i) {
     const BakeLuminaire& b = bake.luminaires[i];
@@ -90,6 +101,9 @@ Status SetUpLuminaires(const Bake& bake, std::vector<LuminaireRuntime>* lums,
       work->rotation_q30.assign(kShRotationValues, 0);
     }
     SetDefaultState(b, &l.state);
+    if (b.zoom.present() && b.lid.candela.size() > max_zoom_samples) {
+      max_zoom_samples = b.lid.candela.size();
+    }
     l.sets.resize(sets);
     for (uint32_t s = 0; s < sets; ++s) {
       const size_t n = static_cast<size_t>(bake.receiver_count(s)) * 3;
@@ -97,6 +111,7 @@ Status SetUpLuminaires(const Bake& bake, std::vector<LuminaireRuntime>* lums,
       if (s > 0 && b.direct_mode == DirectMode::kExactDirect) l.sets[s].direct.assign(n, 0);
     }
   }
+  work->zoom_samples_q16.assign(max_zoom_samples, 0);
   work->alm_q30.assign(max_terms, 0);
   work->coef_q16.assign(max_terms, 0);
   work->k.assign(static_cast<size_t>(max_terms) * 3, 0);
@@ -104,6 +119,16 @@ Status SetUpLuminaires(const Bake& bake, std::vector<LuminaireRuntime>* lums,
   ReflectanceOverPiQ32(bake.mesh.albedo.data(), static_cast<uint32_t>(bake.mesh.albedo.size()),
                        work->reflectance_over_pi_q32.data());
   return Status::Ok();
+}
+
+void ApplyZoom(BakeLuminaire* b, LuminaireRuntime* l, int64_t* samples) {
+  const int M = l->lid_m;
+  ZoomedLidSamplesQ16(b->zoom, l->state.zoom_deg, l->legendre_table_q30.data(), M, samples);
+  for (int k = 0; k <= M; ++k) b->lid.candela[k] = samples[k];
+  LegendreWeightsQ16(l->legendre_table_q30.data(), l->degree, M, samples, l->weights_q16);  // Eq. 19
+  DampWeights(*b, l);
+  l->zoom_pending = false;
+  l->dirty = true;
 }
 
 Status EditLidSample(BakeLuminaire* b, LuminaireRuntime* l, int sample, int64_t candela_q16,
@@ -121,10 +146,7 @@ Status EditLidSample(BakeLuminaire* b, LuminaireRuntime* l, int sample, int64_t 
   UpdateLegendreWeightsQ16(l->legendre_table_q30.data(), l->degree, l->lid_m, sample, old,
                            candela_q16, l->weights_q16);  // Eq. 21
   b->lid.candela[sample] = candela_q16;
-  for (int d = 0; d <= l->degree; ++d) {
-    l->damped_weights_q16[d] =
-        b->use_sigma != 0 ? SigmaDampedQ16(l->degree, d, l->weights_q16[d]) : l->weights_q16[d];
-  }
+  DampWeights(*b, l);
   l->dirty = true;
   *changed = true;
   return Status::Ok();

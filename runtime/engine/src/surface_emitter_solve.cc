@@ -133,28 +133,27 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, int64_t* b) {
           gu[ch] = RoundShiftSat64(du, -kBakeGradientFracBits);
           gv[ch] = RoundShiftSat64(dv, -kBakeGradientFracBits);
           // About the surface's origin, so a child adds it as it is.
-          g0[ch] = SaturateI64(Int128{g0[ch]} - GradientTerm(gu[ch], gv[ch], &centre_uv_q16_[2 * size_t{k}]));
+          g0[ch] = SubSat64(g0[ch], GradientTerm(gu[ch], gv[ch], &centre_uv_q16_[2 * size_t{k}]));
         }
       }
       for (uint32_t k = begin + 1; k < end; ++k) {  // push
         const size_t parent = 3 * size_t{h.node_parent[k]};
         for (int ch = 0; ch < 3; ++ch) {
-          // Saturating, as every sum below: a bake whose links pass validation
-          // can still drive a diverging solve to the int64 limits (fuzzing, issue 17).
-          g0_[3 * size_t{k} + ch] = SaturateI64(Int128{g0_[3 * size_t{k} + ch]} + g0_[parent + ch]);
-          gu_[3 * size_t{k} + ch] = SaturateI64(Int128{gu_[3 * size_t{k} + ch]} + gu_[parent + ch]);
-          gv_[3 * size_t{k} + ch] = SaturateI64(Int128{gv_[3 * size_t{k} + ch]} + gv_[parent + ch]);
+          g0_[3 * size_t{k} + ch] = AddSat64(g0_[3 * size_t{k} + ch], g0_[parent + ch]);
+          gu_[3 * size_t{k} + ch] = AddSat64(gu_[3 * size_t{k} + ch], gu_[parent + ch]);
+          gv_[3 * size_t{k} + ch] = AddSat64(gv_[3 * size_t{k} + ch], gv_[parent + ch]);
         }
       }
       for (uint32_t k = begin; k < end; ++k) {
         if (!h.leaf(k)) continue;
         for (int ch = 0; ch < 3; ++ch) {
           const size_t i = 3 * size_t{k} + ch;
-          const int64_t e = SaturateI64(Int128{g0_[i]} + GradientTerm(gu_[i], gv_[i], &centre_uv_q16_[2 * size_t{k}]));
+          // Saturating: a bake whose links pass validation cannot make these
+          // overflow, but a runaway solve must not reach signed overflow either.
+          const int64_t e = AddSat64(g0_[i], GradientTerm(gu_[i], gv_[i], &centre_uv_q16_[2 * size_t{k}]));
           const int64_t updated =
-              SaturateI64(Int128{emitted_q32[k]} + RoundShiftSat64(static_cast<Int128>(rho_q32_[i]) * e, -32));
-          const Int128 diff = Int128{updated} - b[i];
-          const int64_t d = SaturateI64(diff < 0 ? -diff : diff);
+              AddSat64(emitted_q32[k], RoundShiftSat64(static_cast<Int128>(rho_q32_[i]) * e, -32));
+          const int64_t d = SaturateI64(updated > b[i] ? Int128{updated} - b[i] : Int128{b[i]} - updated);
           if (d > change) change = d;
           if (updated > peak) peak = updated;
           b[i] = updated;
@@ -163,16 +162,14 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, int64_t* b) {
       Pull(begin, end, b);
     }
     if (change == 0) break;
-    if (sweep >= 2 && change < previous) {
+    // change >= 2^55 would overflow the 128-bit test below; such a solve is
+    // far from converged anyway.
+    if (sweep >= 2 && change < previous && change < (int64_t{1} << 55)) {
       // Remaining ~ change r / (1 - r), r = change / previous, capped at 0.99.
       const Int128 lhs = static_cast<Int128>(change) << kEmitterSolveToleranceLog2;
       const bool capped = Int128{change} * 100 >= Int128{previous} * 99;
-      // change^2 2^T < X, X = peak (previous - change) < 2^126, without forming
-      // change^2 2^T (it overflows 128 bits for change >= 2^55): for X >= 1
-      // it holds exactly when change^2 <= (X - 1) >> T.
-      const Int128 x = static_cast<Int128>(peak) * (previous - change);
       const bool done = capped ? lhs * 99 < peak
-                               : x >= 1 && Int128{change} * change <= ((x - 1) >> kEmitterSolveToleranceLog2);
+                               : lhs * change < static_cast<Int128>(peak) * (previous - change);
       if (done) break;
     }
     previous = change;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "relight/bake/bake.h"
+#include "relight/baker/lid_error.h"
 #include "relight/baker/scene.h"
 
 namespace relight::baker {
@@ -56,6 +57,8 @@ struct BakeReport {
   size_t nodes = 0, links = 0;             // hierarchical: quadtree nodes and links
   int sweeps = 0;                          // hierarchical: most Gauss-Seidel sweeps of a solve
   double residual = 0;  // hierarchical: largest residual a solve stopped at, of its peak exitance
+  // Zooming beams without a scene sh_degree: the degree their narrowest angle got.
+  std::vector<LuminaireDegree> zoom_degrees;
 };
 
 // One fixture's state for a reference solve (same meaning as the runtime's).
@@ -64,6 +67,7 @@ struct FixtureSetting {
   double dimmer = 1;
   Rgb colour{1, 1, 1};
   std::optional<double> roll_deg{};  // about the beam axis; unset: the scene's roll
+  std::optional<double> zoom_deg{};  // a zooming beam's full beam angle; unset: the scene's
 };
 
 struct ReferenceResult {
@@ -85,7 +89,9 @@ class Baker {
   Baker(const Baker&) = delete;
   Baker& operator=(const Baker&) = delete;
 
-  // Bases for every luminaire at its SH degree, quantised into the runtime's format.
+  // Bases for every luminaire at its SH degree (a zooming beam without one:
+  // the degree its narrowest angle needs, report().zoom_degrees), quantised
+  // into the runtime's format.
   relight::Bake Bake();
   // The scene lit by the exact distributions at `settings` (one per luminaire,
   // in scene order), float64, no basis.

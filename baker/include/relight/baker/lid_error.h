@@ -76,6 +76,21 @@ struct LuminaireDegree {
   ShWindow window = ShWindow::kNone;
   LidErrorMeasure measure = LidErrorMeasure::kZonalFlux;
 };
+// One luminaire's degree for `target` (sets it, marks it given).
+LuminaireDegree ChooseLuminaireDegree(Luminaire* lum, double target, DirectModeKind mode);
+// A zooming beam is measured at its narrowest angle (the one that needs the
+// highest degree). Marks every degree as given.
 std::vector<LuminaireDegree> ApplyLidErrorTarget(Scene* scene, double target, DirectModeKind mode);
+
+// The zonal flux (exact direct) or L2 (all in SH) target a zooming beam's
+// degree is chosen for when the scene gives no sh_degree (zoom_degree.cc).
+inline constexpr double kZoomDegreeTarget = 0.02;
+// The LID a luminaire's degree must serve: a zooming beam at its narrowest
+// angle, any other LID as it is.
+Lid NarrowestLid(const Lid& lid);
+// Every zooming beam whose sh_degree the scene did not give gets the smallest
+// degree whose series meets kZoomDegreeTarget at its narrowest angle, with
+// the window and measure of ApplyLidErrorTarget; one entry per such luminaire.
+std::vector<LuminaireDegree> ChooseZoomDegrees(Scene* scene, DirectModeKind mode);
 
 }  // namespace relight::baker

@@ -40,20 +40,27 @@ struct Surface {
   int line = 0;                    // of its object in the scene file, for messages (0: unknown)
 };
 
-enum class LidKind { kIsotropic, kCosPower, kTable, kCGamma };
+enum class LidKind { kIsotropic, kCosPower, kTable, kCGamma, kBeam };
 
 struct PhotometricTable;  // relight/baker/photometric_file.h
 
 // Luminous intensity distribution: rotationally symmetric about the beam axis
-// (isotropic, cos^k, table, and photometric files with one C plane), or a
+// (isotropic, cos^k, table, a zoom optic's beam model (beam_profile.h), and
+// photometric files with one C plane), or a
 // photometric file's full table over (C, gamma) (kCGamma).
 struct Lid {
   LidKind kind = LidKind::kIsotropic;
-  double peak_cd = 1000.0;        // isotropic and cos^k: intensity on the axis, candela
+  double peak_cd = 1000.0;        // isotropic, cos^k, beam: intensity on the axis, candela
   double exponent = 1.0;          // cos^k: k
   double spread_deg = 90.0;       // cos^k: zero beyond this gamma (Dobashi Eq. 11)
   std::vector<double> gamma_deg;  // table: strictly increasing, first 0
   std::vector<double> candela;    // table: same length, >= 0
+  // beam (relight/baker/beam_profile.h): peak_cd x f(gamma / (beam_deg / 2)).
+  double beam_deg = 0;       // full angle at half peak
+  double beam_exponent = 2;  // p of the profile, from the field angle
+  double lumens = 0;         // flux, held as the beam zooms
+  double zoom_min_deg = 0, zoom_max_deg = 0;  // beam angle range; 0, 0: no zoom
+  bool zooms() const { return kind == LidKind::kBeam && zoom_max_deg > 0; }
   // kCGamma: the file's table (shared, read-only). For a file path in messages.
   std::shared_ptr<const PhotometricTable> file;
   std::string file_path;
@@ -83,6 +90,9 @@ struct Luminaire {
   double dimmer = 1.0;               // default, 0..1
   Rgb colour{1, 1, 1};               // default, each 0..1
   int sh_degree = 8;                 // N, 0..16
+  // The scene (or --lid-error) set sh_degree; otherwise a zooming beam gets
+  // the degree its narrowest angle needs (ChooseZoomDegrees, lid_error.h).
+  bool sh_degree_given = false;
   // Sigma factor on the Legendre series (Dobashi Eq. 13). Unset: on for the
   // all-in-SH mode, where ringing would show as bright rings in the direct
   // light; off with the exact direct term, where the SH only carries the

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "relight/base/param.h"
+#include "relight/hal/param_text.h"
 #include "relight/hal/register_layout.h"
 #include "relight/base/status.h"
 
@@ -97,7 +98,7 @@ struct GpioButtonConfig {
   ButtonAction action = ButtonAction::kToggle;
   std::string fixture;                 // kToggle: the fixture switched on/off
   int32_t on_level_q15 = 32767;        // kToggle: dimmer when on
-  std::vector<ParamChange> preset;     // kPreset: the changes recalled
+  std::vector<NamedChange> preset;     // kPreset: the changes recalled (names resolved by the sources)
   int config_line = 0;
 };
 

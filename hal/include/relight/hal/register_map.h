@@ -84,8 +84,8 @@ class RegisterMap {
   void Encode(const FixtureState& state, int fixture, uint16_t* out) const;
   // Parameter changes between two register images of one fixture's block
   // (layout().size() registers each): only the parameters whose value
-  // differs, in the order dimmer, pan, tilt, roll, r, g, b. Returns how many
-  // (<= kParamCount).
+  // differs, in the order dimmer, pan, tilt, roll, r, g, b, each naming the
+  // fixture by its index `fixture`. Returns how many (<= kParamCount).
   size_t DecodeChanges(int fixture, const uint16_t* before, const uint16_t* after, int64_t time_us,
                        ParamChange out[kParamCount]) const;
 

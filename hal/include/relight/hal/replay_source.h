@@ -7,7 +7,9 @@
 //   2.0   ceiling_spot.roll=90   # degrees about the beam axis
 //
 // Times are seconds from the start of the script, non-decreasing. The whole
-// script is read and checked at Start(); an error names file:line.
+// script is read and checked at Start(), and its fixture names resolved to
+// indices into the list the source was given; an error (a name the list
+// lacks among them) names file:line.
 #pragma once
 
 #include <cstddef>
@@ -20,7 +22,10 @@ namespace relight::hal {
 
 class ReplaySource final : public InputSource {
  public:
-  explicit ReplaySource(std::string path) : path_(std::move(path)) {}
+  // Changes name fixtures by their index in `fixtures` (e.g. the bake's
+  // luminaires, in order).
+  ReplaySource(std::string path, std::vector<std::string> fixtures)
+      : path_(std::move(path)), fixtures_(std::move(fixtures)) {}
   // Script time of the last change, microseconds (valid after Start()).
   int64_t duration_us() const { return changes_.empty() ? 0 : changes_.back().time_us; }
 
@@ -32,6 +37,7 @@ class ReplaySource final : public InputSource {
   SourceClock DoClock() const override { return SourceClock::kScript; }
 
   std::string path_;
+  std::vector<std::string> fixtures_;
   std::vector<ParamChange> changes_;
   size_t next_ = 0;
 };
@@ -39,7 +45,9 @@ class ReplaySource final : public InputSource {
 // A script line longer than this is an error, not a megabyte of items to parse.
 inline constexpr std::size_t kMaxReplayLineBytes = 4096;
 
-// Parses script text (for tests and for Start()). `where` names the source in errors.
-Status ParseReplayScript(const std::string& text, const std::string& where, std::vector<ParamChange>* out);
+// Parses script text (for tests and for Start()), resolving fixture names
+// to indices in `fixtures`. `where` names the source in errors.
+Status ParseReplayScript(const std::string& text, const std::string& where, const std::vector<std::string>& fixtures,
+                         std::vector<ParamChange>* out);
 
 }  // namespace relight::hal

@@ -10,9 +10,10 @@
 // would drop others too. If olad goes away the thread reconnects every
 // reconnect_ms and the current look is kept meanwhile.
 //
-// Poll() yields no ParamChange yet (the engine's change type is being
-// reworked); LatestValues() gives what the DMX says, for tests and for the
-// integration.
+// Poll() yields the typed changes of what changed since the last poll
+// (dmx_changes.h, shared with DmxReplaySource): fixtures are named by their
+// index in the DMX patch, time_us is the arrival of the fixture's latest
+// frame (CLOCK_MONOTONIC). LatestValues() gives what the DMX says.
 //
 // Thread safety: Start/Poll/Stop from one thread; LatestValues(),
 // connected(), frames_received() from any.
@@ -28,6 +29,9 @@ namespace relight::hal {
 
 struct DmxOlaConfig {
   int reconnect_ms = 1000;             // between attempts while olad is away
+  // Start() without olad: false = an error; true = a warning, and the
+  // receive thread keeps trying (relightd: a console setup may start olad later).
+  bool wait_for_olad = false;
 };
 
 class DmxOlaSource final : public InputSource {
@@ -46,7 +50,7 @@ class DmxOlaSource final : public InputSource {
 
  private:
   // Start: kIoError "olad is not running ..." if olad does
-  // not answer on 127.0.0.1:9010 (it is never auto-started: it must run as
+  // not answer on 127.0.0.1:9010 (unless config.wait_for_olad) (it is never auto-started: it must run as
   // its own user with its own config, docs/dmx.md); kInvalidArgument for an
   // empty patch.
   Status DoStart() override;

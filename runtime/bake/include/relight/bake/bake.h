@@ -93,6 +93,24 @@ struct BakeLid {
   bool axisymmetric() const { return c_deg.empty(); }
 };
 
+// A zoom optic (a scene LID of type "beam" with a zoom range,
+// docs/scene-format.md): the beam keeps the shape of one normalised profile
+// f(x), x = gamma / (beam angle / 2), f(0) = 1, f(1) = 1/2, 0 past the last
+// sample, while its beam angle moves within [min, max] and its lumens stay
+// as they are (a zoom optic moves the light, it does not make more). The
+// engine turns a beam angle into the LID samples peak x f(gamma / half
+// angle), with the peak that keeps the lumens (Engine::SetZoom). An empty
+// profile: the luminaire has no zoom (the file holds no zoom before version 4).
+struct BakeZoom {
+  int32_t min_deg = 0;      // Q16.16 degrees, full beam angle at half peak, in (0, 180)
+  int32_t max_deg = 0;      // Q16.16 degrees, in [min, 180)
+  int32_t default_deg = 0;  // Q16.16 degrees in [min, max]: the angle of BakeLid::candela
+  int64_t lumens = 0;       // Q48.16 lm, held as the beam zooms
+  int32_t profile_end = 0;  // Q16.16: the x of the last profile sample
+  std::vector<int32_t> profile;  // Q2.30, f at x = profile_end * k / (F - 1); f(0) = 2^30
+  bool present() const { return !profile.empty(); }
+};
+
 // Per luminaire and receiver set.
 struct BakeLightReceivers {
   // Exact direct term (empty in DirectMode::kAllInSh).
@@ -123,6 +141,7 @@ struct BakeLuminaire {
   int16_t default_dimmer = 32767;    // Q1.15
   int16_t default_rgb[3] = {32767, 32767, 32767};  // Q1.15
   BakeLid lid;
+  BakeZoom zoom;                              // version 4 on; absent before
   std::vector<BakeLightReceivers> receivers;  // [receiver set]: vertices, then each grid
 };
 
@@ -202,7 +221,8 @@ struct BakeSectionSize {
 
 // Writes atomically: a temporary file beside `path`, fsync, rename. On any
 // error the previous file at `path` (if any) is untouched. The file has
-// format version 3 when it holds a hierarchy, else 2 (older readers read it).
+// format version 4 when a luminaire has a zoom, else 3 when it holds a
+// hierarchy, else 2 (the lowest that holds it, so older readers read it).
 // `sizes`, if given, receives every section's raw and stored size, in file order.
 // Returns kOk, kInvalidArgument (inconsistent sizes, named), kIoError.
 Status WriteBake(const Bake& bake, const std::string& path,

@@ -34,6 +34,8 @@ std::string CheckMesh(const BakeMesh& mesh);
 std::string CheckGrid(const BakeGrid& grid);
 // Everything but the receivers: name, enums, degree, defaults, LID.
 std::string CheckLuminaire(const BakeLuminaire& lum);
+// A luminaire's zoom (bake_check_zoom.cc): absent, or angles, lumens and profile in range.
+std::string CheckZoom(const BakeZoom& zoom, const BakeLid& lid);
 // A LID's (C, gamma) table and SH coefficients (empty for an axisymmetric one).
 std::string CheckLidTable(const BakeLid& lid, int sh_degree);
 // The exact direct term of one luminaire on one receiver set of `receivers` points.

@@ -48,6 +48,19 @@ inline constexpr uint64_t kMaxLidTableValues = uint64_t{1} << 20;
 // kMaxCandelaRaw; RotateShQ16 (sh_rotation.h) takes |c| < 2^51.
 inline constexpr int64_t kMaxShCoefficientRaw = int64_t{1} << 50;
 
+// --- Zoom (BakeZoom): beam angles in (0, 180) degrees, Q16.16; the profile
+// has 2 .. 4097 samples in [0, 1] (Q2.30), the first 1 and none rising; it
+// ends at x in (1, 64] (past the half-peak point, at most 64 half beam
+// angles). Lumens up to 2^32 lm (Q48.16): the engine forms
+// lumens x M x 2^60 in 128 bits (engine zoom.cc).
+inline constexpr int32_t kMaxZoomAngleRaw = 180 << 16;  // exclusive
+inline constexpr uint32_t kMinZoomProfileSamples = 2;
+inline constexpr uint32_t kMaxZoomProfileSamples = 4097;
+inline constexpr int32_t kZoomProfileOne = int32_t{1} << 30;
+inline constexpr int32_t kMinZoomProfileEndRaw = 1 << 16;  // exclusive
+inline constexpr int32_t kMaxZoomProfileEndRaw = 64 << 16;
+inline constexpr int64_t kMaxZoomLumensRaw = int64_t{1} << 48;
+
 // --- Orientation and console ranges, Q16.16 degrees.
 inline constexpr int32_t kMaxTurnRaw = 360 << 16;  // yaw, roll: [-360, 360] degrees
 inline constexpr int32_t kMaxPanRangeRaw = 720 << 16;

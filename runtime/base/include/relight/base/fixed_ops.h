@@ -43,6 +43,10 @@ constexpr int32_t SaturateI32(Int128 v) {
   return static_cast<int32_t>(v);
 }
 
+// a + b and a - b saturated to int64 (no signed overflow whatever the inputs).
+constexpr int64_t AddSat64(int64_t a, int64_t b) { return SaturateI64(static_cast<Int128>(a) + b); }
+constexpr int64_t SubSat64(int64_t a, int64_t b) { return SaturateI64(static_cast<Int128>(a) - b); }
+
 // v * 2^s, rounded to nearest (halves up), saturated to int64. Valid for
 // |v| < 2^126 (every caller's products are far below that).
 inline int64_t RoundShiftSat64(Int128 v, int64_t s) {

@@ -13,6 +13,7 @@ struct FixtureState {
   Q1_15 dimmer;      // 0 .. 1
   Q1_15 rgb[3];      // 0 .. 1 each
   Q16_16 roll_deg;   // about the beam axis (bake.h); moves only LIDs that are not axisymmetric
+  Q16_16 zoom_deg;   // full beam angle at half peak (bake.h BakeZoom); 0: the LID has no zoom
 };
 
 }  // namespace relight

@@ -2,8 +2,9 @@
 // pan, tilt and roll in degrees) is reached by a linear ramp over the
 // fixture's fade time (patch.h fade_ms), in integer microseconds; then the
 // fixture's dimmer curve (linear or square law) maps
-// the dimmer's control level to light output. Integer-only, no heap after
-// construction.
+// the dimmer's control level to light output. Fixtures are slots, known by
+// index: a change's `fixture` is the slot. Integer-only, no heap after
+// construction, no name compared per change.
 //
 // Thread safety: none; the daemon's thread drives it.
 #pragma once
@@ -23,19 +24,20 @@ int32_t ApplyDimmerCurve(hal::DimmerCurve curve, int32_t level_q15);
 
 class Fader {
  public:
-  // One slot per fixture of a resolved patch, in its order.
+  // One slot per fixture of a resolved patch, in the order given (the
+  // daemon gives them in the engine's luminaire order: slot = luminaire).
   explicit Fader(const std::vector<hal::FixturePatch>& fixtures);
 
   int slot_count() const { return static_cast<int>(slots_.size()); }
   // Starts slot `slot` at `state` without a ramp (its dimmer taken as the
   // control level). The next Step() reports all of its parameters.
   void Reset(int slot, const FixtureState& state);
-  // A new target; ramps from the value shown at now_us. False if the patch
-  // has no fixture of that name.
+  // A new target for slot change.fixture; ramps from the value shown at
+  // now_us. False if there is no such slot.
   bool SetTarget(const ParamChange& change, int64_t now_us);
   // Output values that changed since the last call (dimmer after the curve),
-  // as changes for the engine; at most kParamCount per fixture. out must
-  // hold kParamCount * slot_count().
+  // as typed changes whose `fixture` is the slot; at most kParamCount per
+  // fixture. out must hold kParamCount * slot_count().
   size_t Step(int64_t now_us, ParamChange* out);
   // True when no ramp is still moving.
   bool Idle(int64_t now_us) const;
@@ -45,6 +47,8 @@ class Fader {
   void CopyRampsFrom(const Fader& old);
 
  private:
+  // Values are the raw integers of the parameter's format (Q16.16 degrees
+  // or Q1.15 level): a ramp between two values of one format stays in it.
   struct Ramp {
     int32_t from = 0, to = 0;
     int64_t start_us = 0, duration_us = 0;

@@ -55,6 +55,17 @@ class Engine {
   Status SetColour(int luminaire, Q1_15 r, Q1_15 g, Q1_15 b);
   // The fixture turned about its beam axis (bake.h "fixture frame"); wraps.
   Status SetRoll(int luminaire, Q16_16 roll_deg);
+  // Zoom (bake.h BakeZoom): the full beam angle at half peak, degrees. The
+  // angle is clamped to the bake's zoom range (a console's zoom channel
+  // spans the lens's range; past it is the stop); the luminaire's lumens
+  // stay as they are, so a narrower beam is brighter. At the next Update()
+  // (or the next lid_samples() / LID edit) the LID samples become the
+  // profile at the new angle and the Legendre weights are recomputed from
+  // them (Dobashi Eq. 19), which the exact direct term and the SH terms then
+  // use, as after a beam edit (which a later zoom replaces: the samples are
+  // rebuilt from the bake's profile). Integer-only, no allocation.
+  // kInvalidArgument for a bad index, kUnsupported for a luminaire without a zoom.
+  Status SetZoom(int luminaire, Q16_16 beam_angle_deg);
   // Console-style 16-bit pan and tilt (coarse << 8 | fine), spread over the
   // luminaire's pan and tilt ranges (bake.h), 32768 = home (0 degrees).
   Status SetPanTilt16(int luminaire, uint16_t pan, uint16_t tilt);

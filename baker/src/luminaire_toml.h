@@ -1,0 +1,17 @@
+// One [[luminaire]] table of a scene file into a Luminaire.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "relight/baker/scene.h"
+#include "toml_fields.h"
+
+namespace relight::baker {
+
+// `luminaire_lines` holds the names seen so far (name -> line), so a repeated
+// name is an error naming the first. Throws SceneError (file:line).
+Luminaire ReadLuminaire(const toml::table& table, const std::string& path,
+                        std::map<std::string, int>* luminaire_lines);
+
+}  // namespace relight::baker
