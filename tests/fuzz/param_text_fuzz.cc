@@ -8,7 +8,7 @@
 #include "relight/hal/param_text.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  relight::ParamChange out[3];
+  relight::hal::NamedChange out[3];
   std::string error;
   (void)relight::hal::ParseParamText(relight::fuzz::AsText(data, size), 0, out, &error);
   return 0;
