@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "../bounded_file.h"
 #include "relight/hal/dmx/dmx_patch.h"
 
 namespace relight::hal {
@@ -156,11 +157,9 @@ Status ParseDmxPatch(const std::string& text, const std::string& where, DmxPatch
 }
 
 Status LoadDmxPatch(const std::string& path, DmxPatch* out, const std::string& library_dir) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status(StatusCode::kNotFound, path + ": cannot open the DMX patch");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ParseDmxPatch(ss.str(), path, out, library_dir);
+  std::string text;
+  RELIGHT_RETURN_IF_ERROR(ReadConfigFile(path, "DMX patch", &text));  // bounded: not /dev/zero or a FIFO
+  return ParseDmxPatch(text, path, out, library_dir);
 }
 
 }  // namespace relight::hal

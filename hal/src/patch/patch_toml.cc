@@ -10,6 +10,7 @@
 #include <initializer_list>
 #include <sstream>
 
+#include "../bounded_file.h"
 #include "relight/hal/param_text.h"
 #include "relight/hal/patch.h"
 
@@ -397,14 +398,9 @@ Status ParsePatch(const std::string& text, const std::string& where, Patch* out)
 }
 
 Status LoadPatch(const std::string& path, Patch* out) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    return Status(errno == ENOENT ? StatusCode::kNotFound : StatusCode::kIoError,
-                  "patch '" + path + "': " + std::strerror(errno));
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return ParsePatch(text.str(), path, out);
+  std::string text;
+  RELIGHT_RETURN_IF_ERROR(ReadConfigFile(path, "patch", &text));  // bounded: not /dev/zero or a FIFO
+  return ParsePatch(text, path, out);
 }
 
 }  // namespace relight::hal

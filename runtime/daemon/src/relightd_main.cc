@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include "daemon.h"
+#include "notify.h"
 #include "relight/base/log.h"
 
 namespace {
@@ -147,7 +148,11 @@ int main(int argc, char** argv) {
                     config.bake_path.c_str(), daemon.engine().luminaire_count(), config.width, config.height,
                     config.fps, inputs.empty() ? "none" : inputs.c_str());
 
+  // systemd: READY=1 after the first frame, WATCHDOG=1 while frames flow (notify.h).
+  relight::daemon::SystemdNotifier notifier;
+  daemon.SetFrameObserver([&notifier](const relight::daemon::FrameInfo& f) { notifier.OnFrame(f.out_us); });
   const relight::Status st = daemon.Run(g_stop, g_reload);
+  notifier.Stopping();
   const relight::daemon::DaemonStats stats = daemon.stats();
   relight::Log(relight::LogLevel::kInfo,
                     "relightd: %lld frames, %lld ticks skipped, render %.1f ms mean / %.1f ms max, last write-to-frame "

@@ -105,12 +105,9 @@ template <typename R, typename A, typename B>
 constexpr R MulFixed(A a, B b) {
   const Int128 p = static_cast<Int128>(a.raw()) * b.raw();
   const int sh = A::kFracBits + B::kFracBits - R::kFracBits;
-  Int128 v;
-  if (sh > 0) {
-    v = (p + (static_cast<Int128>(1) << (sh - 1))) >> sh;
-  } else {
-    v = p * (static_cast<Int128>(1) << (-sh));
-  }
+  // One initialised value (a constexpr function may not leave it unset: clang).
+  const Int128 v = sh > 0 ? (p + (static_cast<Int128>(1) << (sh - 1))) >> sh
+                          : p * (static_cast<Int128>(1) << (-sh));
   return R::FromRaw(R::SaturateRaw(v));
 }
 

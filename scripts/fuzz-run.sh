@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# Runs every libFuzzer target of tests/fuzz for a fixed time (issue 17,
+# docs/security.md "Fuzzing"). Installs clang and its runtime libraries if
+# missing, builds the `fuzz` preset (clang, ASan + UBSan + libFuzzer) into
+# build-fuzz/, then runs the targets two at a time from their checked-in
+# corpora. New inputs go to a scratch folder, never into the tree. A crash,
+# leak, timeout (> 10 s) or out-of-memory (> 2 GB) fails the run and leaves
+# the input in out/fuzz/<target>/: fix the bug, then add that file to
+# tests/fuzz/corpus/<target>/ as a regression case.
+#
+#   scripts/fuzz-run.sh [SECONDS_PER_TARGET] [TARGET...]   (default 30 s, all)
+#
+# RELIGHT_JOBS=N builds on N cores and runs N targets at once (default: all cores).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$(pwd)
+SECONDS_EACH=${1:-30}
+shift || true
+JOBS=${RELIGHT_JOBS:-$(nproc)}
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+start=$(date +%s)
+
+PACKAGES=(clang libclang-rt-dev)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "fuzz-run: installing ${missing[*]}"
+  $SUDO apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+LAUNCHER=()
+command -v ccache > /dev/null && LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+cmake --preset fuzz "${LAUNCHER[@]}" > /dev/null
+cmake --build build-fuzz -j"$JOBS" --target fuzzers
+built=$(date +%s)
+echo "fuzz-run: built in $((built - start)) s; ${SECONDS_EACH} s per target, $JOBS at a time"
+
+OUT="$ROOT/out/fuzz"
+rm -rf "$OUT"
+mkdir -p "$OUT"
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+
+run_one() {  # name|binary|corpus dirs (colon-separated)|dictionary
+  local name bin corpus dict
+  IFS='|' read -r name bin corpus dict <<< "$1"
+  local dir="$OUT/$name"
+  mkdir -p "$dir/new"
+  local args=(-max_total_time="$SECONDS_EACH" -timeout=10 -rss_limit_mb=2048 -max_len=65536
+              -print_final_stats=1 -artifact_prefix="$dir/")
+  [ -n "$dict" ] && args+=(-dict="$dict")
+  IFS=':' read -r -a seeds <<< "$corpus"
+  if "$bin" "${args[@]}" "$dir/new" "${seeds[@]}" > "$dir/log" 2>&1; then
+    local execs cov
+    execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$dir/log" | tail -1)
+    cov=$(grep -o 'cov: [0-9]*' "$dir/log" | tail -1 | cut -d' ' -f2)
+    echo "fuzz-run: $name ok: ${execs:-?} executions, coverage ${cov:-?} edges"
+  else
+    echo "fuzz-run: $name FAILED (log and input in $dir):"
+    grep -E 'ERROR|SUMMARY|runtime error|Test unit written' "$dir/log" | head -8
+    return 1
+  fi
+}
+export -f run_one
+export OUT SECONDS_EACH
+
+list="$ROOT/build-fuzz/fuzzers.txt"
+if [ $# -gt 0 ]; then
+  pattern=$(printf '^%s|\|' "$@")
+  grep -e "${pattern%\\|}" "$list" > "$OUT/selected.txt"
+  list="$OUT/selected.txt"
+fi
+status=0
+grep -v '^$' "$list" | xargs -d '\n' -P "$JOBS" -I{} bash -c 'run_one "$1"' _ {} | tee "$OUT/summary.txt" || status=1
+passed=$(grep -c ' ok: ' "$OUT/summary.txt" || true)
+failed=$(grep -c ' FAILED ' "$OUT/summary.txt" || true)
+echo "fuzz-run: done in $(( $(date +%s) - start )) s"
+echo "fuzz: $passed passed, $failed failed"
+exit $status

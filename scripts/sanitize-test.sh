@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# The sanitizer build (issue 17, docs/security.md): configures the `asan`
+# preset (CMakePresets.json: ASan + UBSan, -fno-sanitize-recover=all) into
+# build-asan/, builds it and runs tests there with the suppressions in
+# tests/sanitizers/ (system libraries only, each with its reason).
+#
+#   scripts/sanitize-test.sh             everything, the whole suite
+#   scripts/sanitize-test.sh --inputs    what CI runs: the readers of outside
+#                                        input that need no baker (bake file,
+#                                        patches, fixture types, replay, Modbus,
+#                                        DMX) and their fuzz corpora; the
+#                                        baker's readers run sanitized in
+#                                        scripts/fuzz-run.sh's clang build
+#   scripts/sanitize-test.sh [--inputs] -R REGEX   ... only tests matching REGEX
+#
+# RELIGHT_JOBS=N builds and tests on N cores (default: all).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$(pwd)
+JOBS=${RELIGHT_JOBS:-$(nproc)}
+start=$(date +%s)
+
+# Test binaries (and fuzz corpus replays) of --inputs.
+INPUT_TARGETS=(bake_io_test replay_plan_test hal_core_test hal_replay_test hal_modbus_test hal_dmx_test
+               hal_config_file_test
+               bake_fuzz bake_sections_fuzz patch_fuzz dmx_patch_fuzz qxf_fuzz fixture_type_toml_fuzz
+               replay_fuzz param_text_fuzz modbus_request_fuzz dmx_frame_fuzz)
+BUILD_ARGS=()
+CTEST_ARGS=()
+if [ "${1:-}" = "--inputs" ]; then
+  shift
+  BUILD_ARGS=(--target "${INPUT_TARGETS[@]}")
+  labels=$(IFS='|'; echo "${INPUT_TARGETS[*]}")
+  CTEST_ARGS=(-L "^($labels)\$")
+fi
+
+LAUNCHER=()
+command -v ccache > /dev/null && LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+cmake --preset asan "${LAUNCHER[@]}" > /dev/null
+
+# The same options the preset gives ctest, for the build step too:
+# gtest_discover_tests runs every test binary once while building.
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1"
+export LSAN_OPTIONS="suppressions=$ROOT/tests/sanitizers/lsan.supp:print_suppressions=0"
+export UBSAN_OPTIONS="suppressions=$ROOT/tests/sanitizers/ubsan.supp:print_stacktrace=1:halt_on_error=1"
+cmake --build build-asan -j"$JOBS" "${BUILD_ARGS[@]}"
+built=$(date +%s)
+echo "sanitize-test: built in $((built - start)) s"
+
+ctest --preset asan -j"$JOBS" "${CTEST_ARGS[@]}" "$@"
+echo "sanitize-test: tests ran in $(( $(date +%s) - built )) s"
