@@ -1,5 +1,5 @@
 // Reading a configuration file named on the command line or by another file
-// (a patch, a DMX patch): only a regular file, only up to a size limit, so
+// (a patch, a DMX patch, a replay script or DMX recording): only a regular file, only up to a size limit, so
 // `--patch /dev/zero`, a FIFO or a directory is a clear error instead of a
 // hang or memory growing without end (issue 17; the baker's twin is
 // baker/src/bounded_read.h).
@@ -14,6 +14,9 @@ namespace relight::hal {
 
 // Patches and DMX patches are a few kB; this is far above any real one.
 inline constexpr std::uint64_t kMaxConfigFileBytes = 4ull << 20;
+// Recorded input: replay scripts and DMX recordings (a 24 s 48-head show is ~1 MB).
+inline constexpr std::uint64_t kMaxReplayScriptBytes = 64ull << 20;
+inline constexpr std::uint64_t kMaxDmxRecordingBytes = 256ull << 20;
 
 // Reads all of `path` into *text. `what` names the file in messages
 // ("patch", "DMX patch"). kNotFound when it does not exist, kIoError when it

@@ -1,9 +1,8 @@
 // DMX replay: the recording parser and the source that plays it.
-#include <cerrno>
-#include <cstdio>
 #include <cstring>
 #include <sstream>
 
+#include "../bounded_file.h"
 #include "dmx_changes.h"
 #include "relight/hal/dmx/dmx_replay_source.h"
 
@@ -124,22 +123,8 @@ int64_t DmxReplaySource::duration_us() const {
 
 Status DmxReplaySource::DoStart() {
   Impl& m = *impl_;
-  std::FILE* f = std::fopen(m.path.c_str(), "rb");
-  if (f == nullptr) {
-    return Status(errno == ENOENT ? StatusCode::kNotFound : StatusCode::kIoError,
-                  "DMX replay '" + m.path + "': " + std::strerror(errno));
-  }
   std::string text;
-  char buf[65536];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) {
-    text.append(buf, n);
-    if (text.size() > (256u << 20)) {
-      std::fclose(f);
-      return Status(StatusCode::kInvalidArgument, "DMX replay '" + m.path + "': larger than 256 MiB");
-    }
-  }
-  std::fclose(f);
+  RELIGHT_RETURN_IF_ERROR(ReadConfigFile(m.path, "DMX replay", &text, kMaxDmxRecordingBytes));
   RELIGHT_RETURN_IF_ERROR(ParseDmxRecording(text, m.path, &m.rec));
   m.universes.clear();
   for (const DmxFixturePatch& fp : m.patch.fixtures) {

@@ -1,12 +1,11 @@
 #include "relight/hal/replay_source.h"
 
+#include "../bounded_file.h"
 #include "relight/hal/param_text.h"
 
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <sstream>
 
 namespace relight::hal {
@@ -64,22 +63,8 @@ Status ParseReplayScript(const std::string& text, const std::string& where, cons
 }
 
 Status ReplaySource::DoStart() {
-  std::FILE* f = std::fopen(path_.c_str(), "rb");
-  if (f == nullptr) {
-    return Status(errno == ENOENT ? StatusCode::kNotFound : StatusCode::kIoError,
-                  "replay script '" + path_ + "': " + std::strerror(errno));
-  }
   std::string text;
-  char buf[4096];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) {
-    text.append(buf, n);
-    if (text.size() > (64u << 20)) {
-      std::fclose(f);
-      return Status(StatusCode::kInvalidArgument, "replay script '" + path_ + "': larger than 64 MiB");
-    }
-  }
-  std::fclose(f);
+  RELIGHT_RETURN_IF_ERROR(ReadConfigFile(path_, "replay script", &text, kMaxReplayScriptBytes));
   next_ = 0;
   return ParseReplayScript(text, path_, fixtures_, &changes_);
 }
