@@ -175,8 +175,8 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     engine.Update();
     update_time += std::chrono::steady_clock::now() - t0;
-    const int32_t* luminance = engine.vertex_luminance();
-    relight::ToneMapRgb8(tone_map, luminance, vertices, rgb8.data());
+    const int32_t* luminance = engine.vertex_luminance().raw();
+    relight::ToneMapRgb8(tone_map, engine.vertex_luminance(), rgb8.data());
     const uint64_t h_lum = relight::cli::HashInt32Le(luminance, uint64_t{vertices} * 3);
     const uint64_t h_rgb = relight::cli::HashBytes(rgb8.data(), rgb8.size());
     all_luminance = relight::cli::HashInt32Le(luminance, uint64_t{vertices} * 3, all_luminance);
