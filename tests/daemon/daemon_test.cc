@@ -2,9 +2,11 @@
 // the engine through the patch, fades and curves, patch reload, sinks.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cstring>
 
 #include "daemon_test_support.h"
+#include "relight/base/clock.h"
 #include "relight/hal/mock_source.h"
 #include "relight/hal/patch.h"
 
@@ -111,6 +113,44 @@ TEST(Daemon, MockRegisterWritesReachTheEngineOnTheNextFrame) {
   // Flags off: dark, whatever the dimmer register says.
   EXPECT_EQ(seen[2].dimmer.raw(), 0);
   EXPECT_EQ(rig.mock->holding_register(hal::kRegDimmer), 65535 / 2);
+}
+
+// Live input only, real time: the frame loop follows the input (issue 12,
+// 44 fps latency). A change that comes right after a render is drawn at
+// once, in an early frame, not a period later on a tick; a third change in
+// the same period waits for the render budget (one render per period on
+// average, a burst of one).
+TEST(Daemon, LiveChangesRenderOnArrivalWithinTheRenderBudget) {
+  DaemonConfig c = SmallConfig();
+  c.fps = 10;  // 100 ms: far longer than a 96x72 render
+  c.max_frames = 40;
+  c.patch_path = WriteTemp("daemon_live_follow.toml", "[[fixture]]\nname = \"spot\"\nfade_ms = 0\n");
+  Daemon d;
+  ASSERT_TRUE(d.Open(c).ok());
+  auto m = std::make_unique<hal::MockSource>(d.patch(), std::vector<uint16_t>(16, 0));
+  hal::MockSource* mock = m.get();
+  d.AddSource(std::move(m));
+  struct Shown {
+    int64_t tick, out_us, render_start_us;
+  };
+  std::vector<Shown> shown;  // the frames that first show pan 10, 20, 30
+  std::atomic<bool> stop{false}, reload{false};
+  d.SetFrameObserver([&](const FrameInfo& f) {
+    const int32_t want = static_cast<int32_t>(shown.size() + 1) * 10;
+    if (f.frame == 2) mock->Inject(ParamChange::Angle(MonotonicUs(), 0, Param::kPan, Q16_16::FromInt(10)));
+    if (shown.size() < 3 && d.engine().state(0).pan_deg.raw() == want << 16) {
+      shown.push_back({f.tick, f.out_us, f.out_us - f.render_us});
+      if (shown.size() < 3) mock->Inject(ParamChange::Angle(MonotonicUs(), 0, Param::kPan, Q16_16::FromInt(want + 10)));
+    }
+    if (shown.size() == 3) stop = true;
+  });
+  ASSERT_TRUE(d.Start().ok());
+  ASSERT_TRUE(d.Run(stop, reload).ok());
+  ASSERT_EQ(shown.size(), 3u) << "a live change never showed";
+  EXPECT_EQ(shown[1].tick, -1) << "a change right after a render must be drawn at once, not on the next tick";
+  // The third change waits until one period after the render of the first (less the sink, 5 ms slack).
+  EXPECT_GE(shown[2].out_us - shown[0].render_start_us, d.period_us() - 5000)
+      << "more than two renders in one period";
 }
 
 TEST(Daemon, FadesRampLinearlyAndTheSquareCurveShapesTheDimmer) {
