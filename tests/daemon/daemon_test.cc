@@ -8,6 +8,7 @@
 #include "daemon_test_support.h"
 #include "relight/base/clock.h"
 #include "relight/hal/mock_source.h"
+#include "relight/hal/register_map.h"
 #include "relight/hal/patch.h"
 
 namespace relight::daemon {
@@ -177,6 +178,43 @@ TEST(Daemon, FadesRampLinearlyAndTheSquareCurveShapesTheDimmer) {
   // Dimmer ramps in control level, from the bake's default (full), then the curve.
   const int32_t control_mid = 32767 + (16384 - 32767) / 2;
   EXPECT_EQ(seen[7].dimmer.raw(), control::ApplyDimmerCurve(hal::DimmerCurve::kSquare, control_mid));
+}
+
+// Zoom over Modbus (issue 12): a patch layout with a zoom register, on the
+// Cornell box with a zooming spot (15..60 degrees). The register holds the
+// bake's beam angle at start, a write reaches Engine::SetZoom, a write past
+// the lens clamps to its range.
+TEST(Daemon, AZoomRegisterZoomsTheLuminaire) {
+  DaemonConfig c = SmallConfig();
+  c.bake_path = test::BakedFixture("cornell_zoom", baker::DirectModeKind::kExact).bake_path;
+  c.script_time = true;
+  c.max_frames = 3;
+  c.patch_path = WriteTemp("daemon_zoom.toml",
+                           "[[fixture]]\nname = \"spot\"\nregisters = [\"dimmer\", \"zoom\"]\nfade_ms = 0\n");
+  Daemon d;
+  const Status st = d.Open(c);
+  ASSERT_TRUE(st.ok()) << st.ToString();
+  const Q16_16 baked = d.engine().state(0).zoom_deg;
+  ASSERT_GT(baked.raw(), 0) << "the spot of cornell_zoom has a zoom";
+  auto m = std::make_unique<hal::MockSource>(d.patch(), std::vector<uint16_t>{32767, hal::RegisterFromZoomQ16(baked.raw())});
+  hal::MockSource* mock = m.get();
+  d.AddSource(std::move(m));
+  EXPECT_EQ(hal::RegisterFromZoomQ16(baked.raw()), static_cast<uint16_t>((int64_t{baked.raw()} * 100 + 32768) >> 16));
+  std::vector<Q16_16> seen;
+  d.SetFrameObserver([&](const FrameInfo& f) {
+    seen.push_back(d.engine().state(0).zoom_deg);
+    if (f.frame == 0) {
+      EXPECT_EQ(mock->SetHoldingRegister(1, 3650, 1), 0);  // 36.5 degrees
+    }
+    if (f.frame == 1) {
+      EXPECT_EQ(mock->SetHoldingRegister(1, 18000, 2), 0);  // 180: past the lens
+    }
+  });
+  ASSERT_TRUE(RunToEnd(d).ok());
+  ASSERT_EQ(seen.size(), 3u);
+  EXPECT_EQ(seen[0], baked);
+  EXPECT_EQ(seen[1].raw(), 73 << 15);
+  EXPECT_EQ(seen[2].raw(), 60 << 16);  // the lens's widest
 }
 
 TEST(Daemon, SighupReloadKeepsTheOldPatchWhenTheNewOneIsBroken) {
