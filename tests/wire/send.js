@@ -42,6 +42,9 @@ async function sendArtnet() {
   // A unicast host: the library does not bind port 6454 (it only does for a broadcast host), so the
   // receiver on this machine keeps the port to itself.
   const artnet = require('artnet')({ host: dest, sendAll: true, refresh: 60000 });
+  // The library holds back a send within 25 ms of the last one and then never calls that send's
+  // callback: keep the frames further apart.
+  const gapMs = Math.max(intervalMs, 30);
   const full = new Array(512).fill(0);
   slots.forEach((v, i) => { full[i] = v; });
   for (let k = 0; k < repeats; ++k) {
@@ -49,7 +52,7 @@ async function sendArtnet() {
       artnet.data[universe] = undefined;  // resend even when unchanged
       artnet.set(universe, 1, full, (err) => (err ? reject(err) : resolve()));
     });
-    await sleep(intervalMs);
+    await sleep(gapMs);
   }
   artnet.close();
 }
