@@ -93,9 +93,10 @@ bool WaitFor(Pred pred, int timeout_ms) {
   return pred();
 }
 
-// The npm sender: `repeats` copies of one frame, 25 ms apart, to 127.0.0.1.
+// The npm sender: `repeats` copies of one frame, 25 ms apart (Art-Net: 30), to
+// 127.0.0.1; a sender that hangs is killed after 20 s.
 int NodeSend(const char* protocol, int universe, const Look& look, int repeats = 4) {
-  return std::system(("cd " + kNodeDir + " && node send.js " + protocol + " " + std::to_string(universe) +
+  return std::system(("cd " + kNodeDir + " && timeout 20 node send.js " + protocol + " " + std::to_string(universe) +
                       " 127.0.0.1 " + look.Csv() + " " + std::to_string(repeats) + " 25 > /dev/null")
                          .c_str());
 }
