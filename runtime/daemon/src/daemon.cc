@@ -330,7 +330,7 @@ Status Daemon::Run(const std::atomic<bool>& stop, std::atomic<bool>& reload) {
   // at once, so a console sending at the frame rate is shown about one render
   // after each DMX frame instead of waiting for a tick of its own phase.
   // Scripts keep the fixed ticks t0 + k/fps: a replay's frames stay the same.
-  const bool follow_input = !m.config.script_time && m.LiveOnly();
+  const bool follow_input = !m.config.script_time && !m.config.fixed_ticks && m.LiveOnly();
   RenderBudget budget(m.period_us, follow_input);
   int64_t tick = 0;                         // the next tick: script time tick * period
   int64_t next_tick_us = t0_us;             // following live input: when the next tick is due

@@ -58,6 +58,8 @@ struct DaemonConfig {
   int width = 1280, height = 720;
   double fps = 30;
   bool script_time = false;   // no waiting: frame k shows script time k/fps (reproducible runs)
+  bool fixed_ticks = false;   // live inputs only: keep the ticks at t0 + k/fps (the loop before ticks
+                              // followed the input; dmx_latency_bench --compare measures both)
   bool exit_when_replay_done = false;  // after the frame that shows the replay's (or DMX replay's) last change and fade
   int64_t max_frames = 0;     // 0: no limit
   // Camera: the bake's, with any of these replacing its part.
