@@ -164,7 +164,7 @@ bool Segment(const DaemonConfig& c, bool fixed_ticks, const std::vector<Mover>& 
   std::vector<int64_t> sent_us(1 << 16, 0);  // by pan16
   std::mutex mu;
   bool measuring = false;
-  uint16_t last_shown = 0;
+  uint16_t last_shown = 0, warm_shown = 0;
   daemon.SetFrameObserver([&](const FrameInfo& f) {
     const uint16_t pan16 = DegreesToConsole(daemon.engine().state(lums[0]).pan_deg, movers[0].pan_range_q16);
     bool all = true;
@@ -172,7 +172,11 @@ bool Segment(const DaemonConfig& c, bool fixed_ticks, const std::vector<Mover>& 
       all = all && DegreesToConsole(daemon.engine().state(lums[i]).pan_deg, movers[i].pan_range_q16) == pan16;
     }
     std::lock_guard<std::mutex> lock(mu);
-    if (!measuring || !all || pan16 == last_shown || sent_us[pan16] == 0) return;
+    if (!measuring) {
+      if (all) warm_shown = pan16;
+      return;
+    }
+    if (!all || pan16 == last_shown || sent_us[pan16] == 0) return;
     last_shown = pan16;
     out->latency_us.push_back(f.out_us - sent_us[pan16]);
     if (f.newest_arrival_us > 0) out->arrival_us.push_back(f.out_us - f.newest_arrival_us);
@@ -181,18 +185,31 @@ bool Segment(const DaemonConfig& c, bool fixed_ticks, const std::vector<Mover>& 
   if (!daemon.Start().ok()) return false;
   std::atomic<bool> stop{false}, reload{false};
   std::thread runner([&] { (void)daemon.Run(stop, reload); });
-  // Give the daemon's source time to connect and register (it retries every second).
-  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+  // Warm-up: frame first_k until the daemon shows it (its source connects and registers, retrying every
+  // second), so no measured frame waits for the registration: olad hands a new client the last frame.
+  const int64_t frame_us = 22727;  // 44 frames/s
+  const uint16_t warm = frames_out.Set(first_k);
+  bool ok = false;
+  for (int i = 0; i < 10 * 44 && !ok; ++i) {
+    if (!frames_out.Send(sender)) break;
+    std::this_thread::sleep_for(std::chrono::microseconds(frame_us));
+    std::lock_guard<std::mutex> lock(mu);
+    ok = warm_shown == warm;
+  }
+  if (!ok) {
+    std::fprintf(stderr, "dmx_latency_bench: the daemon never showed a DMX frame\n");
+    stop = true;
+    runner.join();
+    return false;
+  }
   const DaemonStats before = daemon.stats();
   {
     std::lock_guard<std::mutex> lock(mu);
     measuring = true;
   }
-  const int64_t frame_us = 22727;  // 44 frames/s
   const int64_t t0 = MonotonicUs();
-  bool ok = true;
-  for (int64_t k = first_k; k < first_k + frames && ok; ++k) {
-    const int64_t due = t0 + (k - first_k) * frame_us;
+  for (int64_t k = first_k + 1; k < first_k + frames && ok; ++k) {
+    const int64_t due = t0 + (k - first_k - 1) * frame_us;
     while (MonotonicUs() < due) std::this_thread::sleep_for(std::chrono::microseconds(200));
     const uint16_t pan16 = frames_out.Set(k);
     {
@@ -206,7 +223,7 @@ bool Segment(const DaemonConfig& c, bool fixed_ticks, const std::vector<Mover>& 
   stop = true;
   runner.join();
   const DaemonStats after = daemon.stats();
-  out->frames_sent += frames;
+  out->frames_sent += frames - 1;
   out->stats.frames += after.frames - before.frames;
   out->stats.renders += after.renders - before.renders;
   out->stats.early_frames += after.early_frames - before.early_frames;
