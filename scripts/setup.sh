@@ -12,6 +12,9 @@ missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# node and npm for the wire test's independent senders (tests/wire): Debian's,
+# unless a node with npm is already there (another packaging of node ships npm itself).
+command -v npm > /dev/null || missing+=(nodejs npm)
 if [ ${#missing[@]} -gt 0 ]; then
   echo "relight: installing ${missing[*]}"
   SUDO=""

@@ -82,6 +82,11 @@ ReferenceResult ComputeReference(const BakerCore& core,
   for (size_t l = 0; l < lums; ++l) {
     const Lid& lid = scene.luminaires[l].lid;
     const std::optional<double>& zoom = settings[l].zoom_deg;
+    if (zoom && !lid.zooms()) {  // a beam angle for a fixed beam would be dropped without a word
+      throw SceneError(scene.path, scene.luminaires[l].line,
+                       "reference: luminaire '" + scene.luminaires[l].name +
+                           "' has no zoom (its LID is not a \"beam\" with a zoom range); its beam angle cannot be set");
+    }
     set_lids.push_back(lid.zooms() && zoom ? ZoomedBeamLid(lid, std::clamp(*zoom, lid.zoom_min_deg,
                                                                            lid.zoom_max_deg))
                                            : lid);

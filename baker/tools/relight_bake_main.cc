@@ -100,7 +100,24 @@ bool ApplySets(const Scene& scene, const std::vector<std::string>& sets,
     if (arg.param == "pan") s.pan_deg = arg.values[0];
     if (arg.param == "tilt") s.tilt_deg = arg.values[0];
     if (arg.param == "roll") s.roll_deg = arg.values[0];
-    if (arg.param == "zoom") s.zoom_deg = arg.values[0];
+    if (arg.param == "zoom") {
+      // Only a zooming beam has a beam angle to set; past its range the angle clamps, as in the engine.
+      const relight::baker::Luminaire& lum = scene.luminaires[index];
+      if (!lum.lid.zooms()) {
+        *error = "--set '" + text + "': luminaire '" + lum.name + "' (" + scene.path + ":" + std::to_string(lum.line) +
+                 ") has no zoom: only a \"beam\" LID with a zoom range has a beam angle to set";
+        return false;
+      }
+      const double v = arg.values[0];
+      if (v < lum.lid.zoom_min_deg || v > lum.lid.zoom_max_deg) {
+        std::fprintf(stderr,
+                     "relight-bake: --set '%s': %g degrees is outside the zoom range %g..%g of '%s'; the reference "
+                     "uses %g degrees, as the engine clamps\n",
+                     text.c_str(), v, lum.lid.zoom_min_deg, lum.lid.zoom_max_deg, lum.name.c_str(),
+                     v < lum.lid.zoom_min_deg ? lum.lid.zoom_min_deg : lum.lid.zoom_max_deg);
+      }
+      s.zoom_deg = v;
+    }
     if (arg.param == "dimmer") s.dimmer = arg.values[0];
     if (arg.param == "r") s.colour[0] = arg.values[0];
     if (arg.param == "g") s.colour[1] = arg.values[0];

@@ -101,8 +101,9 @@ void GpioDecoder::Step(Encoder& e, int new_state, int64_t time_us, ChangeRing* o
   e.state = new_state;
   if (dir == 0) return;
   const bool angle = IsAngle(e.config.param);
-  const int64_t lo = angle ? -720 * 65536 : 0;
-  const int64_t hi = angle ? 720 * 65536 : 32767;
+  const bool zoom = e.config.param == Param::kZoom;  // a beam angle, in (0, 180); the engine clamps to the bake's range
+  const int64_t lo = zoom ? 655 : angle ? -720 * 65536 : 0;
+  const int64_t hi = zoom ? 180 * 65536 - 655 : angle ? 720 * 65536 : 32767;
   int64_t v = int64_t{e.value} + dir * int64_t{e.config.step};
   v = v < lo ? lo : v > hi ? hi : v;
   if (v == e.value) return;

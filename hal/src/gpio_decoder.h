@@ -6,7 +6,8 @@
 // (the line going to its active level) toggles the fixture (first press on at
 // on_level, next off) or recalls the preset. Encoders: every valid Gray-code
 // step moves the parameter by +-step; invalid (skipped) steps are ignored;
-// contact bounce cancels out (+1 -1).
+// contact bounce cancels out (+1 -1). Angles stay in -720..720 degrees, a
+// zoom (a beam angle, from the patch's start) in (0, 180), levels in 0..1.
 //
 // Thread safety: none.
 #pragma once

@@ -4,7 +4,8 @@ namespace relight::hal {
 namespace {
 
 constexpr const char* kNames[kChannelCount] = {"dimmer", "pan",  "pan_fine", "tilt",  "tilt_fine", "roll",
-                                               "roll_fine", "r", "g",        "b",     "profile",   "flags"};
+                                               "roll_fine", "r", "g",        "b",     "profile",   "flags",
+                                               "zoom"};
 
 // The fine byte that goes with an angle's coarse one, or the coarse one itself
 // for a channel that is no angle.

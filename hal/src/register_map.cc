@@ -37,6 +37,13 @@ uint16_t ByteFromLevelQ15(int32_t level_q15) {
   return static_cast<uint16_t>(DivRound(int64_t{level} * 255, 32767));
 }
 
+int32_t ZoomQ16FromRegister(uint16_t reg) { return static_cast<int32_t>(DivRound(int64_t{reg} * 65536, 100)); }
+
+uint16_t RegisterFromZoomQ16(int32_t deg_q16) {
+  const int64_t reg = DivRound(int64_t{deg_q16} * 100, 65536);
+  return static_cast<uint16_t>(reg < 0 ? 0 : reg > kZoomRegisterMax ? kZoomRegisterMax : reg);
+}
+
 Status RegisterMap::Build(const std::vector<FixturePatch>& fixtures, RegisterMap* out) {
   RegisterMap map;
   map.fixtures_ = fixtures;
@@ -84,6 +91,7 @@ uint8_t RegisterMap::CheckWrite(int addr, uint16_t value) const {
   switch (layout.at(offset)) {
     case Channel::kProfile: return value != 0 ? kExceptionIllegalValue : 0;
     case Channel::kFlags: return (value & ~kFlagOn) != 0 ? kExceptionIllegalValue : 0;
+    case Channel::kZoom: return value > kZoomRegisterMax ? kExceptionIllegalValue : 0;
     default: return 0;  // dimmer and whole 16-bit angles: every value means something
   }
 }
@@ -107,6 +115,7 @@ void RegisterMap::Encode(const FixtureState& state, int fixture, uint16_t* out) 
   put(Channel::kBlue, ByteFromLevelQ15(state.rgb[2].raw()));
   put(Channel::kProfile, 0);
   put(Channel::kFlags, kFlagOn);
+  put(Channel::kZoom, RegisterFromZoomQ16(state.zoom_deg.raw()));  // 0: the luminaire has no zoom
   std::copy(block, block + layout.size(), out);
 }
 
@@ -139,6 +148,12 @@ size_t RegisterMap::DecodeChanges(int fixture, const uint16_t* before, const uin
   for (int c = 0; c < 3; ++c) {
     const int at = layout.OffsetOf(colours[c]);
     if (at >= 0 && before[at] != after[at]) emit(params[c], LevelQ15FromByte(after[at]));
+  }
+  // A peer's value above 180 degrees (the poller) clamps like a byte does.
+  const int zoom_at = layout.OffsetOf(Channel::kZoom);
+  const auto zoom = [](uint16_t reg) { return reg > kZoomRegisterMax ? kZoomRegisterMax : reg; };
+  if (zoom_at >= 0 && zoom(before[zoom_at]) != zoom(after[zoom_at])) {
+    emit(Param::kZoom, ZoomQ16FromRegister(zoom(after[zoom_at])));
   }
   return n;
 }

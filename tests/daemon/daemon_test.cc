@@ -2,10 +2,13 @@
 // the engine through the patch, fades and curves, patch reload, sinks.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cstring>
 
 #include "daemon_test_support.h"
+#include "relight/base/clock.h"
 #include "relight/hal/mock_source.h"
+#include "relight/hal/register_map.h"
 #include "relight/hal/patch.h"
 
 namespace relight::daemon {
@@ -113,6 +116,44 @@ TEST(Daemon, MockRegisterWritesReachTheEngineOnTheNextFrame) {
   EXPECT_EQ(rig.mock->holding_register(hal::kRegDimmer), 65535 / 2);
 }
 
+// Live input only, real time: the frame loop follows the input (issue 12,
+// 44 fps latency). A change that comes right after a render is drawn at
+// once, in an early frame, not a period later on a tick; a third change in
+// the same period waits for the render budget (one render per period on
+// average, a burst of one).
+TEST(Daemon, LiveChangesRenderOnArrivalWithinTheRenderBudget) {
+  DaemonConfig c = SmallConfig();
+  c.fps = 10;  // 100 ms: far longer than a 96x72 render
+  c.max_frames = 40;
+  c.patch_path = WriteTemp("daemon_live_follow.toml", "[[fixture]]\nname = \"spot\"\nfade_ms = 0\n");
+  Daemon d;
+  ASSERT_TRUE(d.Open(c).ok());
+  auto m = std::make_unique<hal::MockSource>(d.patch(), std::vector<uint16_t>(16, 0));
+  hal::MockSource* mock = m.get();
+  d.AddSource(std::move(m));
+  struct Shown {
+    int64_t tick, out_us, render_start_us;
+  };
+  std::vector<Shown> shown;  // the frames that first show pan 10, 20, 30
+  std::atomic<bool> stop{false}, reload{false};
+  d.SetFrameObserver([&](const FrameInfo& f) {
+    const int32_t want = static_cast<int32_t>(shown.size() + 1) * 10;
+    if (f.frame == 2) mock->Inject(ParamChange::Angle(MonotonicUs(), 0, Param::kPan, Q16_16::FromInt(10)));
+    if (shown.size() < 3 && d.engine().state(0).pan_deg.raw() == want << 16) {
+      shown.push_back({f.tick, f.out_us, f.out_us - f.render_us});
+      if (shown.size() < 3) mock->Inject(ParamChange::Angle(MonotonicUs(), 0, Param::kPan, Q16_16::FromInt(want + 10)));
+    }
+    if (shown.size() == 3) stop = true;
+  });
+  ASSERT_TRUE(d.Start().ok());
+  ASSERT_TRUE(d.Run(stop, reload).ok());
+  ASSERT_EQ(shown.size(), 3u) << "a live change never showed";
+  EXPECT_EQ(shown[1].tick, -1) << "a change right after a render must be drawn at once, not on the next tick";
+  // The third change waits until one period after the render of the first (less the sink, 5 ms slack).
+  EXPECT_GE(shown[2].out_us - shown[0].render_start_us, d.period_us() - 5000)
+      << "more than two renders in one period";
+}
+
 TEST(Daemon, FadesRampLinearlyAndTheSquareCurveShapesTheDimmer) {
   MockRig rig("[[fixture]]\nname = \"spot\"\nfade_ms = 100\ndimmer_curve = \"square\"\n", 14, 100);
   std::vector<FixtureState> seen;
@@ -137,6 +178,43 @@ TEST(Daemon, FadesRampLinearlyAndTheSquareCurveShapesTheDimmer) {
   // Dimmer ramps in control level, from the bake's default (full), then the curve.
   const int32_t control_mid = 32767 + (16384 - 32767) / 2;
   EXPECT_EQ(seen[7].dimmer.raw(), control::ApplyDimmerCurve(hal::DimmerCurve::kSquare, control_mid));
+}
+
+// Zoom over Modbus (issue 12): a patch layout with a zoom register, on the
+// Cornell box with a zooming spot (15..60 degrees). The register holds the
+// bake's beam angle at start, a write reaches Engine::SetZoom, a write past
+// the lens clamps to its range.
+TEST(Daemon, AZoomRegisterZoomsTheLuminaire) {
+  DaemonConfig c = SmallConfig();
+  c.bake_path = test::BakedFixture("cornell_zoom", baker::DirectModeKind::kExact).bake_path;
+  c.script_time = true;
+  c.max_frames = 3;
+  c.patch_path = WriteTemp("daemon_zoom.toml",
+                           "[[fixture]]\nname = \"spot\"\nregisters = [\"dimmer\", \"zoom\"]\nfade_ms = 0\n");
+  Daemon d;
+  const Status st = d.Open(c);
+  ASSERT_TRUE(st.ok()) << st.ToString();
+  const Q16_16 baked = d.engine().state(0).zoom_deg;
+  ASSERT_GT(baked.raw(), 0) << "the spot of cornell_zoom has a zoom";
+  auto m = std::make_unique<hal::MockSource>(d.patch(), std::vector<uint16_t>{32767, hal::RegisterFromZoomQ16(baked.raw())});
+  hal::MockSource* mock = m.get();
+  d.AddSource(std::move(m));
+  EXPECT_EQ(hal::RegisterFromZoomQ16(baked.raw()), static_cast<uint16_t>((int64_t{baked.raw()} * 100 + 32768) >> 16));
+  std::vector<Q16_16> seen;
+  d.SetFrameObserver([&](const FrameInfo& f) {
+    seen.push_back(d.engine().state(0).zoom_deg);
+    if (f.frame == 0) {
+      EXPECT_EQ(mock->SetHoldingRegister(1, 3650, 1), 0);  // 36.5 degrees
+    }
+    if (f.frame == 1) {
+      EXPECT_EQ(mock->SetHoldingRegister(1, 18000, 2), 0);  // 180: past the lens
+    }
+  });
+  ASSERT_TRUE(RunToEnd(d).ok());
+  ASSERT_EQ(seen.size(), 3u);
+  EXPECT_EQ(seen[0], baked);
+  EXPECT_EQ(seen[1].raw(), 73 << 15);
+  EXPECT_EQ(seen[2].raw(), 60 << 16);  // the lens's widest
 }
 
 TEST(Daemon, SighupReloadKeepsTheOldPatchWhenTheNewOneIsBroken) {

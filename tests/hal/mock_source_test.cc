@@ -147,6 +147,44 @@ TEST(MockSource, EncoderQuadratureMovesTheDimmerAndClamps) {
   EXPECT_EQ(testing::Raw(got.back()), 4 * 4096);
 }
 
+// Zoom on an encoder (issue 12): steps in degrees of beam angle from the
+// patch's start, kept inside (0, 180) (the engine clamps to the bake's range).
+TEST(MockSource, AZoomEncoderStepsTheBeamAngleFromItsStart) {
+  Patch p;
+  ASSERT_TRUE(ParsePatch("[[fixture]]\nname = \"spot\"\n[[gpio_encoder]]\nchip = \"gpiochip0\"\nline_a = 22\n"
+                         "line_b = 23\nfixture = \"spot\"\nparam = \"zoom\"\nstep = 0.5\nstart = 24\n",
+                         "zoom.toml", &p)
+                  .ok());
+  ASSERT_TRUE(ResolvePatch({{"spot"}}, &p).ok());
+  MockSource mock(p);
+  int64_t t = 10;
+  // Quadrature from 00 (this test's own phase: Turn()'s is shared with the tests before it).
+  int phase = 0;
+  const auto turn = [&](int counts) {
+    static const bool kA[4] = {false, false, true, true};
+    static const bool kB[4] = {false, true, true, false};
+    for (int i = 0; i < (counts < 0 ? -counts : counts); ++i) {
+      const int next = (phase + (counts > 0 ? 1 : 3)) % 4;
+      if (kA[next] != kA[phase]) {
+        ASSERT_TRUE(mock.SetLine("gpiochip0", 22, kA[next], t++).ok());
+      }
+      if (kB[next] != kB[phase]) {
+        ASSERT_TRUE(mock.SetLine("gpiochip0", 23, kB[next], t++).ok());
+      }
+      phase = next;
+    }
+  };
+  turn(3);
+  std::vector<ParamChange> got = PollAll(mock, t);
+  ASSERT_EQ(got.size(), 3u);
+  EXPECT_EQ(got.back().param, Param::kZoom);
+  EXPECT_EQ(testing::Raw(got.back()), (24 << 16) + 3 * (1 << 15));  // 25.5 degrees
+  turn(-60);  // 24 + 1.5 - 30 degrees: stops just above 0
+  got = PollAll(mock, t);
+  EXPECT_EQ(testing::Raw(got.back()), 655);
+  EXPECT_GT(testing::Raw(got.back()), 0);
+}
+
 TEST(MockSource, InjectedChangesComeDueInTimeAndTheQueueIsBounded) {
   MockSource mock(GpioPatch());
   ParamChange c = ParamChange::Level(500, testing::FixtureIndexOf("spot"), Param::kDimmer, Q1_15::FromRaw(100));

@@ -138,7 +138,7 @@ TEST(Patch, ErrorsNameFileLineAndWhatWasExpected) {
       {"[modbus_tcp]\nport = 70000\n", "p.toml:2", "0..65535"},
       {"[modbus_rtu]\nbaud = 9600\n", "p.toml:1", "missing 'device'"},
       {"[modbus_rtu]\ndevice = \"/dev/x\"\nparity = \"mark\"\n", "p.toml:3", "parity"},
-      {"[modbus_poller]\nmap = [ { register = 1, fixture = \"a\", param = \"zoom\" } ]\n", "p.toml:2",
+      {"[modbus_poller]\nmap = [ { register = 1, fixture = \"a\", param = \"iris\" } ]\n", "p.toml:2",
        "pan_fine, tilt"},
       {"[modbus_poller]\nmap = [ { register = 0, fixture = \"a\", param = \"r\" }, { register = 200, fixture = \"a\", "
        "param = \"g\" } ]\n",
@@ -162,8 +162,13 @@ TEST(Patch, ErrorsNameFileLineAndWhatWasExpected) {
        "'roll_fine' (+1) needs 'roll'"},
       {"[[fixture]]\nname = \"a\"\nregisters = [\"pan\", \"tilt\", \"pan\"]\n", "p.toml:3",
        "'pan' is listed twice (+0 and +2)"},
-      {"[[fixture]]\nname = \"a\"\nregisters = [\n  \"dimmer\",\n  \"zoom\",\n]\n", "p.toml:5",
-       "unknown channel 'zoom' (known: dimmer, pan, pan_fine"},
+      {"[[fixture]]\nname = \"a\"\nregisters = [\n  \"dimmer\",\n  \"iris\",\n]\n", "p.toml:5",
+       "unknown channel 'iris' (known: dimmer, pan, pan_fine"},
+      // Zoom: an encoder starts from a beam angle the patch gives, in (0, 180).
+      {"[[gpio_encoder]]\nchip = \"c\"\nline_a = 1\nline_b = 2\nfixture = \"a\"\nparam = \"zoom\"\n", "p.toml:1",
+       "a zoom encoder needs 'start', the beam angle in degrees"},
+      {"[[gpio_encoder]]\nchip = \"c\"\nline_a = 1\nline_b = 2\nfixture = \"a\"\nparam = \"zoom\"\nstart = 0\n",
+       "p.toml:7", "'start' must be in 0.01..179.99 degrees, got 0"},
       {"[[fixture]]\nname = \"a\"\nregisters = [\"pan\", \"flags\"]\n", "p.toml:3", "needs 'dimmer'"},
       {"[[fixture]]\nname = \"a\"\nregisters = []\n", "p.toml:3", "at least one channel"},
       {"[[fixture]]\nname = \"a\"\nregisters = [1]\n", "p.toml:3", "channel names as strings"},
@@ -227,6 +232,35 @@ map = [ { register = 4, fixture = "spot", param = "pan_fine" },
   EXPECT_EQ(st.code(), StatusCode::kInvalidArgument);
   EXPECT_NE(st.message().find("r.toml:3: [modbus_poller] map: fixture 'a' has no 'roll' register"), std::string::npos)
       << st.message();
+}
+
+TEST(Patch, ZoomIsARegisterAndAnEncoderParameter) {
+  Patch p;
+  const Status st = ParsePatch(R"([[fixture]]
+name = "spot"
+registers = ["dimmer", "pan", "tilt", "zoom"]
+
+[modbus_poller]
+map = [ { register = 7, fixture = "spot", param = "zoom" } ]
+
+[[gpio_encoder]]
+chip = "gpiochip0"
+line_a = 1
+line_b = 2
+fixture = "spot"
+param = "zoom"
+step = 0.5
+start = 24
+)",
+                               "z.toml", &p);
+  ASSERT_TRUE(st.ok()) << st.ToString();
+  EXPECT_EQ(p.fixtures[0].layout.OffsetOf(Channel::kZoom), 3);
+  EXPECT_EQ(p.modbus_poller.map[0].channel, Channel::kZoom);
+  ASSERT_EQ(p.encoders.size(), 1u);
+  EXPECT_EQ(p.encoders[0].param, Param::kZoom);
+  EXPECT_EQ(p.encoders[0].step, 1 << 15);  // 0.5 degrees, Q16.16
+  EXPECT_EQ(p.encoders[0].start, 24 << 16);
+  EXPECT_TRUE(ResolvePatch({{"spot"}}, &p).ok());
 }
 
 TEST(Patch, BlocksOfEveryLayoutMustNotOverlap) {

@@ -133,11 +133,11 @@ TEST(RegisterLayout, RejectsBadListsSayingWhich) {
   }
   Channel ch = Channel::kDimmer;
   for (const char* name : {"dimmer", "pan", "pan_fine", "tilt", "tilt_fine", "roll", "roll_fine", "r", "g", "b",
-                           "profile", "flags"}) {
+                           "profile", "flags", "zoom"}) {
     ASSERT_TRUE(ChannelFromName(name, &ch)) << name;
     EXPECT_STREQ(ChannelName(ch), name);
   }
-  EXPECT_FALSE(ChannelFromName("zoom", &ch));
+  EXPECT_FALSE(ChannelFromName("iris", &ch));
 }
 
 TEST(RegisterLayout, CoarseAndFineBytesMakeThe16BitValue) {
@@ -206,7 +206,7 @@ TEST(RegisterMap, ALayoutWithRollAndFineBytesChecksEncodesAndDecodes) {
   // Every parameter moving: dimmer, pan, tilt, roll, r, g, b, in that order.
   const uint16_t all[10] = {100, 1, 2, 3, 4, 5, 6, 7, 8, 1};
   n = map.DecodeChanges(0, before, all, 0, out);
-  constexpr int kRegisterParams = kParamCount - 1;  // every parameter but zoom, which no register carries
+  constexpr int kRegisterParams = kParamCount - 1;  // every parameter but zoom, which this layout lacks
   ASSERT_EQ(n, static_cast<size_t>(kRegisterParams));
   const Param order[kRegisterParams] = {Param::kDimmer, Param::kPan, Param::kTilt, Param::kRoll,
                                     Param::kRed,    Param::kGreen, Param::kBlue};
@@ -286,6 +286,47 @@ TEST(RequestCheck, VerdictsForEachFunction) {
   EXPECT_EQ(check(Pdu({0x10, 0, 0, 0, 1, 200, 0, 0})).verdict, PduVerdict::kMalformed);  // byte count lies
   EXPECT_EQ(check(Pdu({0x17, 0, 0, 0, 1, 0, 1})).verdict, PduVerdict::kMalformed);
   EXPECT_EQ(check(Pdu({})).verdict, PduVerdict::kMalformed);
+}
+
+}  // namespace
+}  // namespace relight::hal
+
+namespace relight::hal {
+namespace {
+
+// Zoom (issue 12): the beam angle in 0.01 degrees, checked, shown and decoded.
+TEST(RegisterMap, AZoomRegisterCarriesTheBeamAngleInHundredthsOfADegree) {
+  // Every register value: Q16.16 within half an LSB of reg / 100 degrees, and back exactly.
+  for (int reg = 0; reg <= kZoomRegisterMax; ++reg) {
+    const int32_t q16 = ZoomQ16FromRegister(static_cast<uint16_t>(reg));
+    EXPECT_LE(std::abs(static_cast<double>(q16) - reg * 65536.0 / 100.0), 0.5) << reg;
+    ASSERT_EQ(RegisterFromZoomQ16(q16), reg);
+  }
+  EXPECT_EQ(RegisterFromZoomQ16(-(5 << 16)), 0);
+  EXPECT_EQ(RegisterFromZoomQ16(200 << 16), kZoomRegisterMax);
+
+  Patch p;
+  ASSERT_TRUE(ParsePatch("[[fixture]]\nname = \"spot\"\nregisters = [\"dimmer\", \"zoom\", \"pan\"]\n", "z.toml", &p).ok());
+  ASSERT_TRUE(ResolvePatch({{"spot"}}, &p).ok());
+  RegisterMap map;
+  ASSERT_TRUE(RegisterMap::Build(p.fixtures, &map).ok());
+  EXPECT_EQ(map.CheckWrite(1, kZoomRegisterMax), 0);
+  EXPECT_EQ(map.CheckWrite(1, kZoomRegisterMax + 1), kExceptionIllegalValue);
+  FixtureState state{};
+  state.zoom_deg = Q16_16::FromInt(24);
+  uint16_t before[3] = {}, after[3] = {};
+  map.Encode(state, 0, before);
+  EXPECT_EQ(before[1], 2400);
+  std::copy(before, before + 3, after);
+  after[1] = 3650;
+  ParamChange out[kParamCount];
+  ASSERT_EQ(map.DecodeChanges(0, before, after, 5, out), 1u);
+  EXPECT_EQ(out[0].param, Param::kZoom);
+  EXPECT_EQ(out[0].degrees.raw(), 73 << 15);  // 36.5 degrees
+  // A poller's peer above 180 degrees counts as 180; the same clamped value is no change.
+  before[1] = kZoomRegisterMax;
+  after[1] = 40000;
+  EXPECT_EQ(map.DecodeChanges(0, before, after, 5, out), 0u);
 }
 
 }  // namespace

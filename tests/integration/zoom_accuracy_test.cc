@@ -72,6 +72,32 @@ TEST(CornellZoom, ZoomChangesTheLightBeyondTheBars) {
   EXPECT_GT(r.vertices.mean_rel, 0.003);
 }
 
+// The reference takes a beam angle only where there is a zoom (issue 12):
+// set on a fixed beam it is an error naming the scene's line, not silently
+// dropped; past a zoom's range it clamps, as the engine does.
+TEST(CornellZoom, TheReferenceRefusesAZoomForAFixedBeamAndClampsPastTheRange) {
+  const BakedScene& fixed = BakedFixture("cornell_box", baker::DirectModeKind::kExact);
+  std::vector<baker::FixtureSetting> settings = fixed.baker->DefaultSettings();
+  settings[0].zoom_deg = 20;
+  try {
+    (void)fixed.baker->Reference(settings);
+    ADD_FAILURE() << "a zoom on a fixed beam was accepted";
+  } catch (const baker::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("cornell_box.toml:" + std::to_string(fixed.scene.luminaires[0].line) +
+                                         ": reference: luminaire 'spot' has no zoom"),
+              std::string::npos)
+        << e.what();
+  }
+
+  const BakedScene& zoom = BakedFixture("cornell_zoom", baker::DirectModeKind::kExact);
+  std::vector<baker::FixtureSetting> below = zoom.baker->DefaultSettings(), narrowest = below;
+  below[0].zoom_deg = 5;
+  narrowest[0].zoom_deg = 15;
+  const baker::ReferenceResult a = zoom.baker->Reference(below), b = zoom.baker->Reference(narrowest);
+  EXPECT_TRUE(a.vertex_luminance == b.vertex_luminance);
+  EXPECT_TRUE(a.grid_illuminance == b.grid_illuminance);
+}
+
 INSTANTIATE_TEST_SUITE_P(Zooms, CornellZoomAccuracy, ::testing::Values(15.0, 37.5, 60.0),
                          [](const ::testing::TestParamInfo<double>& param_info) {
                            return "zoom" + std::to_string(static_cast<int>(param_info.param));

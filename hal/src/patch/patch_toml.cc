@@ -115,8 +115,7 @@ int32_t LevelQ15(double level) { return static_cast<int32_t>(std::lround(level *
 
 Param ParseParamName(const Table& t, const char* key, const std::string& name) {
   Param param = Param::kDimmer;
-  // Zoom is a beam angle a console sends, not a quantity an encoder steps from 0.
-  if (!ParamFromName(name, &param) || param == Param::kZoom) {
+  if (!ParamFromName(name, &param)) {
     t.Fail(t.Node(key),
            std::string("'") + key + "' must be one of pan, tilt, roll, zoom, dimmer, r, g, b; got '" + name + "'");
   }
@@ -128,7 +127,8 @@ Channel ParseChannelName(const Table& t, const char* key, const std::string& nam
   Channel channel = Channel::kDimmer;
   if (!ChannelFromName(name, &channel) || channel == Channel::kProfile || channel == Channel::kFlags) {
     t.Fail(t.Node(key), std::string("'") + key +
-                            "' must be one of dimmer, pan, pan_fine, tilt, tilt_fine, roll, roll_fine, r, g, b; got '" +
+                            "' must be one of dimmer, pan, pan_fine, tilt, tilt_fine, roll, roll_fine, r, g, b, zoom; "
+                            "got '" +
                             name + "'");
   }
   return channel;
@@ -346,7 +346,15 @@ void ParseEncoder(const Table& t, Patch* patch) {
   if (e.line_a == e.line_b) t.Fail(t.Node("line_b"), "line_a and line_b must differ");
   e.fixture = t.String("fixture", "", true);
   e.param = ParseParamName(t, "param", t.String("param", "dimmer"));
-  if (IsAngle(e.param)) {
+  if (e.param == Param::kZoom) {
+    // A beam angle has no natural 0 to step from: the encoder starts where the patch says.
+    if (t.Node("start") == nullptr) {
+      t.Fail(nullptr, "a zoom encoder needs 'start', the beam angle in degrees it starts from (e.g. the luminaire's "
+                      "default zoom)");
+    }
+    e.step = DegreesQ16(t.Number("step", 1.0, 0.001, 90.0, " degrees"));
+    e.start = DegreesQ16(t.Number("start", 0.0, 0.01, 179.99, " degrees"));
+  } else if (IsAngle(e.param)) {
     e.step = DegreesQ16(t.Number("step", 1.0, 0.001, 90.0, " degrees"));
     e.start = DegreesQ16(t.Number("start", 0.0, -720.0, 720.0, " degrees"));
   } else {

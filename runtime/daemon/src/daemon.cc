@@ -44,6 +44,32 @@ void SleepUntil(int64_t deadline_us) {
   clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr);
 }
 
+// When a live change may be rendered between ticks: at most one render per
+// period on average. With `burst` (ticks following live input) one render
+// may come up to a period early (GCRA with a tolerance of one period), so a
+// console sending at the frame rate with jitter is rendered on arrival
+// instead of locking onto the tick phase and waiting nearly a period.
+// Without it: one period after the last render, as replays always did.
+// Following live input, ticks wait for the budget too, so it bounds every
+// render, not only early ones.
+class RenderBudget {
+ public:
+  RenderBudget(int64_t period_us, bool burst) : period_us_(period_us), burst_(burst) {}
+  // The earliest time the next render may start.
+  int64_t EarliestUs() const { return burst_ ? next_us_ - period_us_ : last_us_ + period_us_; }
+  bool Allows(int64_t now_us) const { return now_us >= EarliestUs(); }
+  void Spend(int64_t now_us) {
+    last_us_ = now_us;
+    next_us_ = std::max(next_us_, now_us) + period_us_;
+  }
+
+ private:
+  int64_t period_us_;
+  bool burst_;
+  int64_t last_us_ = INT64_MIN / 2;  // start of the last render
+  int64_t next_us_ = INT64_MIN / 2;  // GCRA's theoretical time of the next render
+};
+
 }  // namespace
 
 struct Daemon::Impl {
@@ -207,17 +233,25 @@ struct Daemon::Impl {
     return n;
   }
 
+  // True when no source plays a script: then ticks follow live input (Run).
+  bool LiveOnly() const {
+    for (const control::BoundInput& in : inputs) {
+      if (in.source->clock() == hal::SourceClock::kScript) return false;
+    }
+    return true;
+  }
+
   // Real time: waits for the tick due at `deadline_us`, meanwhile polling the
   // live sources every millisecond. Returns true to render early: a live
-  // change came and the last render started at least one period ago.
-  bool WaitForTick(int64_t t0_us, int64_t deadline_us, int64_t last_render_us, const std::atomic<bool>& stop,
+  // change came and `budget` allows a render now.
+  bool WaitForTick(int64_t t0_us, int64_t deadline_us, const RenderBudget& budget, const std::atomic<bool>& stop,
                    const std::atomic<bool>& reload, int64_t* pending_arrival_us) {
     for (;;) {
       const int64_t now = MonotonicUs();
       if (stop.load() || reload.load() || now >= deadline_us) return false;
       const int64_t arrival = PollInputs(now - t0_us, true);
       if (arrival > *pending_arrival_us) *pending_arrival_us = arrival;
-      if (*pending_arrival_us > 0 && now >= last_render_us + period_us) return true;
+      if (*pending_arrival_us > 0 && budget.Allows(now)) return true;
       SleepUntil(std::min(deadline_us, now + 1000));
     }
   }
@@ -290,24 +324,36 @@ Status Daemon::Start() { return Impl::StartAll(impl_->AllSources()); }
 Status Daemon::Run(const std::atomic<bool>& stop, std::atomic<bool>& reload) {
   Impl& m = *impl_;
   const int64_t t0_us = MonotonicUs();
+  // Live input only (no script plays): the ticks follow the input. A frame
+  // rendered early for a live change moves the next tick to one period after
+  // it, and the budget lets a change that comes a little before that render
+  // at once, so a console sending at the frame rate is shown about one render
+  // after each DMX frame instead of waiting for a tick of its own phase.
+  // Scripts keep the fixed ticks t0 + k/fps: a replay's frames stay the same.
+  const bool follow_input = !m.config.script_time && !m.config.fixed_ticks && m.LiveOnly();
+  RenderBudget budget(m.period_us, follow_input);
   int64_t tick = 0;                         // the next tick: script time tick * period
-  int64_t last_render_us = INT64_MIN / 2;   // MonotonicUs() when the last render started
+  int64_t next_tick_us = t0_us;             // following live input: when the next tick is due
   int64_t pending_arrival_us = 0;           // newest live change not yet shown
   bool have_frame = false;
   for (int64_t frame = 0; !stop.load(); ++frame) {
     bool early = false;
+    // Following live input, ticks keep to the budget too: renders stay at most --fps on average.
+    const int64_t deadline_us =
+        follow_input ? std::max(next_tick_us, budget.EarliestUs()) : t0_us + tick * m.period_us;
     if (!m.config.script_time) {
-      early = m.WaitForTick(t0_us, t0_us + tick * m.period_us, last_render_us, stop, reload, &pending_arrival_us);
+      early = m.WaitForTick(t0_us, deadline_us, budget, stop, reload, &pending_arrival_us);
       if (stop.load()) break;
-      if (!early && MonotonicUs() < t0_us + tick * m.period_us) {
+      if (!early && MonotonicUs() < deadline_us) {
         --frame;  // woken for a reload only
         if (reload.exchange(false)) m.Reload();
         continue;
       }
     }
     if (reload.exchange(false)) m.Reload();
-    // Daemon time: the tick's script time, or now for an early frame.
-    const int64_t time_us = early ? MonotonicUs() - t0_us : tick * m.period_us;
+    // Daemon time: the tick's script time, or now for an early frame or a tick following live input.
+    const int64_t start_us = MonotonicUs();
+    const int64_t time_us = early || follow_input ? start_us - t0_us : tick * m.period_us;
     if (!early) {
       const int64_t arrival = m.PollInputs(time_us, false);
       if (arrival > pending_arrival_us) pending_arrival_us = arrival;
@@ -316,9 +362,10 @@ Status Daemon::Run(const std::atomic<bool>& stop, std::atomic<bool>& reload) {
     const bool render = m.ApplyFader(time_us) > 0 || !have_frame;
     int64_t render_us = 0;
     if (render) {
-      last_render_us = MonotonicUs();
+      const int64_t render_start_us = MonotonicUs();
+      budget.Spend(render_start_us);
       RELIGHT_RETURN_IF_ERROR(m.pipeline.Render(m.engine));
-      render_us = MonotonicUs() - last_render_us;
+      render_us = MonotonicUs() - render_start_us;
       have_frame = true;
       ++m.stats.renders;
     }
@@ -340,9 +387,16 @@ Status Daemon::Run(const std::atomic<bool>& stop, std::atomic<bool>& reload) {
 
     if (m.config.max_frames > 0 && frame + 1 >= m.config.max_frames) break;
     if (!early && m.config.exit_when_replay_done && m.ScriptsFinished() && m.path.Idle(time_us)) break;
-    if (early) continue;  // the tick is still to come
-    ++tick;
-    if (!m.config.script_time) {
+    if (!early) ++tick;
+    if (follow_input) {
+      // The next tick one period after this frame; behind schedule: skip, don't queue.
+      next_tick_us = start_us + m.period_us;
+      if (out_us >= next_tick_us) {
+        const int64_t behind = (out_us - next_tick_us) / m.period_us + 1;
+        m.stats.ticks_skipped += behind;
+        next_tick_us += behind * m.period_us;
+      }
+    } else if (!early && !m.config.script_time) {
       // Behind schedule: skip to the next tick still ahead rather than queue frames.
       const int64_t due = (out_us - t0_us) / m.period_us + 1;
       if (due > tick) {

@@ -10,12 +10,19 @@
 // skipped, not queued. The last state keeps being shown whatever the
 // inputs do.
 //
-// Between ticks the live sources (Modbus, GPIO) are polled every
-// millisecond: a change that arrives when the last render is at least one
-// period old is rendered at once (an early frame) instead of waiting for the
-// tick, so renders stay at most one per period while a lone write is shown
+// Between ticks the live sources (Modbus, GPIO, DMX) are polled every
+// millisecond: a change that arrives when the render budget allows is
+// rendered at once (an early frame) instead of waiting for the tick, so
+// renders stay at most one per period on average while a change is shown
 // within about one render time. A tick where nothing moved sends the last
-// frame again without redrawing it. Replay scripts only act on ticks, so
+// frame again without redrawing it.
+//
+// With live inputs only, the ticks follow the input: the next tick is due
+// one period after the last frame, and a change may be rendered up to one
+// period early (a burst of one), so a console sending at the frame rate is
+// rendered as each DMX frame arrives, never phase-locked a period behind.
+// With a replay script the ticks stay at t0 + k/fps and early frames keep
+// one period from the last render: replay scripts only act on ticks, so
 // replays give the same frames in real time and in script time.
 //
 // Thread safety: one thread calls everything; stop/reload flags may be set
@@ -51,6 +58,8 @@ struct DaemonConfig {
   int width = 1280, height = 720;
   double fps = 30;
   bool script_time = false;   // no waiting: frame k shows script time k/fps (reproducible runs)
+  bool fixed_ticks = false;   // live inputs only: keep the ticks at t0 + k/fps (the loop before ticks
+                              // followed the input; dmx_latency_bench --compare measures both)
   bool exit_when_replay_done = false;  // after the frame that shows the replay's (or DMX replay's) last change and fade
   int64_t max_frames = 0;     // 0: no limit
   // Camera: the bake's, with any of these replacing its part.

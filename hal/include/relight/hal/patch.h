@@ -107,8 +107,8 @@ struct GpioEncoderConfig {
   int line_a = 0, line_b = 0;
   std::string fixture;
   Param param = Param::kDimmer;
-  int32_t step = 327;                  // per quadrature count: Q1.15 level, or Q16.16 degrees for pan/tilt/roll
-  int32_t start = 0;                   // value before the first turn (same format)
+  int32_t step = 327;                  // per quadrature count: Q1.15 level, or Q16.16 degrees for pan/tilt/roll/zoom
+  int32_t start = 0;                   // value before the first turn (same format; zoom: required, a beam angle)
   int config_line = 0;
 };
 

@@ -7,6 +7,10 @@
 //   "pan" alone          one register holds the whole value (coarse << 8 | fine)
 //   "pan" + "pan_fine"   two registers, the coarse and the fine byte, 0..255 each
 //
+// Zoom is the full beam angle itself, in hundredths of a degree (2400 =
+// 24 degrees, 0..18000), not a console value: a luminaire's zoom range is
+// the bake's, and the engine clamps the angle to it.
+//
 // Thread safety: a value type, immutable once built.
 #pragma once
 
@@ -17,9 +21,9 @@
 namespace relight::hal {
 
 enum class Channel : uint8_t {
-  kDimmer, kPan, kPanFine, kTilt, kTiltFine, kRoll, kRollFine, kRed, kGreen, kBlue, kProfile, kFlags,
+  kDimmer, kPan, kPanFine, kTilt, kTiltFine, kRoll, kRollFine, kRed, kGreen, kBlue, kProfile, kFlags, kZoom,
 };
-inline constexpr int kChannelCount = 12;
+inline constexpr int kChannelCount = 13;
 inline constexpr int kMaxRegistersPerFixture = kChannelCount;  // each channel at most once
 
 const char* ChannelName(Channel channel);

@@ -11,7 +11,8 @@
 //   +6 profile  beam/profile index: 0 (bakes carry one profile per luminaire)
 //   +7 flags    bit 0: on (0 = off, dimmer output 0); other bits must be 0
 // A layout may add roll (0..65535 over the roll range, 32768 = 0 degrees) and
-// split pan, tilt or roll into coarse and fine bytes.
+// zoom (the beam angle in 0.01 degrees, 0..18000) and split pan, tilt or roll
+// into coarse and fine bytes.
 // Input registers (status), see kStatus*.
 //
 // Thread safety: a RegisterMap is immutable after Build(); share it freely.
@@ -64,6 +65,9 @@ int32_t LevelQ15FromRegister16(uint16_t reg);  // 0..65535 -> 0..32767
 uint16_t Register16FromLevelQ15(int32_t level_q15);
 int32_t LevelQ15FromByte(uint16_t reg);  // 0..255 -> 0..32767
 uint16_t ByteFromLevelQ15(int32_t level_q15);
+inline constexpr uint16_t kZoomRegisterMax = 18000;  // 180 degrees in 0.01 degrees
+int32_t ZoomQ16FromRegister(uint16_t reg);           // 0.01 degrees -> Q16.16 degrees
+uint16_t RegisterFromZoomQ16(int32_t deg_q16);       // clamps to 0..kZoomRegisterMax
 class RegisterMap {
  public:
   // From a resolved patch (every fixture has a modbus_base and its ranges).
@@ -77,14 +81,14 @@ class RegisterMap {
   // 0 if `value` may be written at `addr`, else the exception code to send:
   // kExceptionIllegalAddress outside every block, kExceptionIllegalValue for a
   // value the register does not take (a byte above 255, profile not 0,
-  // flags other than 0 or 1).
+  // flags other than 0 or 1, a zoom above 18000).
   uint8_t CheckWrite(int addr, uint16_t value) const;
   // The fixture's registers (layout().size() of them) that show `state`
   // (flags = on, profile 0).
   void Encode(const FixtureState& state, int fixture, uint16_t* out) const;
   // Parameter changes between two register images of one fixture's block
   // (layout().size() registers each): only the parameters whose value
-  // differs, in the order dimmer, pan, tilt, roll, r, g, b, each naming the
+  // differs, in the order dimmer, pan, tilt, roll, r, g, b, zoom, each naming the
   // fixture by its index `fixture`. Returns how many (<= kParamCount).
   size_t DecodeChanges(int fixture, const uint16_t* before, const uint16_t* after, int64_t time_us,
                        ParamChange out[kParamCount]) const;
