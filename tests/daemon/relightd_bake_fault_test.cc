@@ -1,0 +1,135 @@
+// Issue 17 faults: the bake file under a running relightd is truncated,
+// replaced by garbage, then by another valid bake, with a SIGHUP after each.
+// What must survive: the process, its Modbus server and the look it shows
+// (the raw frame stream) through both bad files; the valid bake is taken.
+#include <gtest/gtest.h>
+#include <modbus/modbus.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <random>
+
+#include "relight/bake/bake.h"
+#include "relight/hal/register_map.h"
+#include "relightd_process.h"
+
+namespace relight::daemon {
+namespace {
+
+using testing::ReadAll;
+using testing::Relightd;
+using testing::WriteTemp;
+
+constexpr int kWidth = 64, kHeight = 48;
+constexpr size_t kFrameBytes = size_t{kWidth} * kHeight * 3;
+
+// The raw stream's frames so far and the last whole one.
+struct Frames {
+  size_t count = 0;
+  std::string last;
+};
+Frames ReadFrames(const std::string& path) {
+  const std::string all = ReadAll(path);
+  Frames f;
+  f.count = all.size() / kFrameBytes;
+  if (f.count > 0) f.last = all.substr((f.count - 1) * kFrameBytes, kFrameBytes);
+  return f;
+}
+
+// Waits until at least `more` frames past `after` are out; the last one.
+std::string FrameAfter(const std::string& path, size_t after, size_t more) {
+  for (int i = 0; i < 3000; ++i) {
+    const Frames f = ReadFrames(path);
+    if (f.count >= after + more) return f.last;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ADD_FAILURE() << "the frame stream stopped at " << ReadFrames(path).count << " frames";
+  return "";
+}
+
+// Waits until the last frame differs from `old` (a change was drawn).
+std::string ChangedFrame(const std::string& path, const std::string& old) {
+  for (int i = 0; i < 3000; ++i) {
+    const Frames f = ReadFrames(path);
+    if (f.count > 0 && f.last != old) return f.last;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ADD_FAILURE() << "the frame never changed";
+  return old;
+}
+
+TEST(RelightdFaults, BadBakesOnSighupAreRefusedAndTheOldLookStays) {
+  namespace fs = std::filesystem;
+  const std::string dir = ::testing::TempDir();
+  const std::string bake = dir + "/fault_room.rlb";
+  const std::string frames = dir + "/fault_frames.raw";
+  fs::copy_file(testing::CornellBake(), bake, fs::copy_options::overwrite_existing);
+  const std::string good = ReadAll(bake);
+  // No fades: a write shows at the next frame.
+  const std::string patch = WriteTemp("fault_live.toml", "[[fixture]]\nname = \"spot\"\n[modbus_tcp]\nport = 0\n");
+  Relightd d({bake, "--patch", patch, "--fps", "20", "--width", std::to_string(kWidth), "--height",
+              std::to_string(kHeight), "--raw", frames},
+             "relightd_bake_fault.log");
+  const int port = std::atoi(d.WaitForLog("listening on 127\\.0\\.0\\.1:([0-9]+)").c_str());
+  ASSERT_GT(port, 0);
+  modbus_t* ctx = modbus_new_tcp("127.0.0.1", port);
+  ASSERT_EQ(modbus_connect(ctx), 0);
+  const std::string look = FrameAfter(frames, 0, 3);
+  ASSERT_EQ(look.size(), kFrameBytes);
+
+  // 1. Truncated in place (a copy cut short).
+  ASSERT_EQ(truncate(bake.c_str(), static_cast<off_t>(good.size() / 2)), 0);
+  d.Signal(SIGHUP);
+  ASSERT_TRUE(d.WaitForLogCount("bake reload refused, keeping the running bake: .*fault_room\\.rlb", 1));
+  // 2. Replaced by garbage of the same size (renamed over it, as a copy tool does).
+  std::string garbage(good.size(), '\0');
+  std::mt19937 rng(17);
+  for (char& c : garbage) c = static_cast<char>(rng());
+  WriteTemp("fault_garbage.tmp", garbage);
+  fs::rename(dir + "/fault_garbage.tmp", bake);
+  d.Signal(SIGHUP);
+  ASSERT_TRUE(d.WaitForLogCount("bake reload refused, keeping the running bake: .*fault_room\\.rlb", 2));
+
+  // Still running, still drawing the same look, still serving Modbus.
+  EXPECT_TRUE(d.Running());
+  const size_t before = ReadFrames(frames).count;
+  EXPECT_EQ(FrameAfter(frames, before, 3), look) << "the look changed after refused bakes";
+  uint16_t regs[hal::kRegistersPerFixture] = {};
+  ASSERT_EQ(modbus_read_registers(ctx, 0, hal::kRegistersPerFixture, regs), hal::kRegistersPerFixture);
+  ASSERT_EQ(modbus_write_register(ctx, hal::kRegDimmer, 20000), 1);
+  const std::string dimmed = ChangedFrame(frames, look);
+  EXPECT_NE(dimmed, look);
+
+  // 3. A valid bake with the same luminaire, its display white 4x higher
+  // (so it looks darker): taken, and the dimmer written before stays.
+  Bake next;
+  ASSERT_TRUE(ReadBake(testing::CornellBake(), &next).ok());
+  next.white_luminance *= 4;
+  ASSERT_TRUE(WriteBake(next, dir + "/fault_next.rlb").ok());
+  fs::rename(dir + "/fault_next.rlb", bake);
+  d.Signal(SIGHUP);
+  d.WaitForLog("bake .*fault_room\\.rlb reloaded");
+  const std::string taken = ChangedFrame(frames, dimmed);
+  EXPECT_NE(taken, dimmed);
+  EXPECT_NE(taken, std::string(kFrameBytes, '\0')) << "a black frame after the reload";
+  long sum_dimmed = 0, sum_taken = 0;
+  for (size_t i = 0; i < kFrameBytes; ++i) {
+    sum_dimmed += static_cast<unsigned char>(dimmed[i]);
+    sum_taken += static_cast<unsigned char>(taken[i]);
+  }
+  EXPECT_LT(sum_taken, sum_dimmed) << "a higher display white must darken the frame";
+  ASSERT_EQ(modbus_read_registers(ctx, hal::kRegDimmer, 1, regs), 1);
+  EXPECT_EQ(regs[0], 20000) << "the dimmer written before the reload";
+  EXPECT_TRUE(d.Running());
+
+  modbus_close(ctx);
+  modbus_free(ctx);
+  d.Signal(SIGTERM);
+  EXPECT_EQ(d.Wait(), 0) << d.log();
+  std::printf("%s", d.log().c_str());
+}
+
+}  // namespace
+}  // namespace relight::daemon
