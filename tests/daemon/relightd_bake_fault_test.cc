@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <random>
+#include <regex>
 
 #include "relight/bake/bake.h"
 #include "relight/hal/register_map.h"
@@ -60,6 +61,29 @@ std::string ChangedFrame(const std::string& path, const std::string& old) {
   return old;
 }
 
+// The port of the newest Modbus server in the log: a SIGHUP re-reads the
+// patch, which restarts its server (on a new port when the patch says 0).
+int LatestPort(const std::string& log) {
+  static const std::regex re("listening on 127\\.0\\.0\\.1:([0-9]+)");
+  int port = 0;
+  for (auto it = std::sregex_iterator(log.begin(), log.end(), re); it != std::sregex_iterator(); ++it) {
+    port = std::atoi((*it)[1].str().c_str());
+  }
+  return port;
+}
+
+modbus_t* Connect(int port) {
+  modbus_t* ctx = modbus_new_tcp("127.0.0.1", port);
+  modbus_set_response_timeout(ctx, 2, 0);
+  EXPECT_EQ(modbus_connect(ctx), 0) << "port " << port;
+  return ctx;
+}
+
+void Disconnect(modbus_t* ctx) {
+  modbus_close(ctx);
+  modbus_free(ctx);
+}
+
 TEST(RelightdFaults, BadBakesOnSighupAreRefusedAndTheOldLookStays) {
   namespace fs = std::filesystem;
   const std::string dir = ::testing::TempDir();
@@ -72,10 +96,7 @@ TEST(RelightdFaults, BadBakesOnSighupAreRefusedAndTheOldLookStays) {
   Relightd d({bake, "--patch", patch, "--fps", "20", "--width", std::to_string(kWidth), "--height",
               std::to_string(kHeight), "--raw", frames},
              "relightd_bake_fault.log");
-  const int port = std::atoi(d.WaitForLog("listening on 127\\.0\\.0\\.1:([0-9]+)").c_str());
-  ASSERT_GT(port, 0);
-  modbus_t* ctx = modbus_new_tcp("127.0.0.1", port);
-  ASSERT_EQ(modbus_connect(ctx), 0);
+  ASSERT_GT(std::atoi(d.WaitForLog("listening on 127\\.0\\.0\\.1:([0-9]+)").c_str()), 0);
   const std::string look = FrameAfter(frames, 0, 3);
   ASSERT_EQ(look.size(), kFrameBytes);
 
@@ -91,11 +112,15 @@ TEST(RelightdFaults, BadBakesOnSighupAreRefusedAndTheOldLookStays) {
   fs::rename(dir + "/fault_garbage.tmp", bake);
   d.Signal(SIGHUP);
   ASSERT_TRUE(d.WaitForLogCount("bake reload refused, keeping the running bake: .*fault_room\\.rlb", 2));
+  ASSERT_TRUE(d.WaitForLogCount("patch .*fault_live\\.toml reloaded", 2));
+  EXPECT_NE(d.log().find("header: the file has"), std::string::npos) << "the truncation is named";
+  EXPECT_NE(d.log().find("bad magic"), std::string::npos) << "the garbage is named";
 
   // Still running, still drawing the same look, still serving Modbus.
   EXPECT_TRUE(d.Running());
   const size_t before = ReadFrames(frames).count;
   EXPECT_EQ(FrameAfter(frames, before, 3), look) << "the look changed after refused bakes";
+  modbus_t* ctx = Connect(LatestPort(d.log()));
   uint16_t regs[hal::kRegistersPerFixture] = {};
   ASSERT_EQ(modbus_read_registers(ctx, 0, hal::kRegistersPerFixture, regs), hal::kRegistersPerFixture);
   ASSERT_EQ(modbus_write_register(ctx, hal::kRegDimmer, 20000), 1);
@@ -109,8 +134,11 @@ TEST(RelightdFaults, BadBakesOnSighupAreRefusedAndTheOldLookStays) {
   next.white_luminance *= 4;
   ASSERT_TRUE(WriteBake(next, dir + "/fault_next.rlb").ok());
   fs::rename(dir + "/fault_next.rlb", bake);
+  Disconnect(ctx);
   d.Signal(SIGHUP);
   d.WaitForLog("bake .*fault_room\\.rlb reloaded");
+  ASSERT_TRUE(d.WaitForLogCount("patch .*fault_live\\.toml reloaded", 3));
+  ctx = Connect(LatestPort(d.log()));
   const std::string taken = ChangedFrame(frames, dimmed);
   EXPECT_NE(taken, dimmed);
   EXPECT_NE(taken, std::string(kFrameBytes, '\0')) << "a black frame after the reload";
@@ -124,8 +152,7 @@ TEST(RelightdFaults, BadBakesOnSighupAreRefusedAndTheOldLookStays) {
   EXPECT_EQ(regs[0], 20000) << "the dimmer written before the reload";
   EXPECT_TRUE(d.Running());
 
-  modbus_close(ctx);
-  modbus_free(ctx);
+  Disconnect(ctx);
   d.Signal(SIGTERM);
   EXPECT_EQ(d.Wait(), 0) << d.log();
   std::printf("%s", d.log().c_str());
