@@ -1,7 +1,10 @@
-// Issue 17 faults: the bake file under a running relightd is truncated,
-// replaced by garbage, then by another valid bake, with a SIGHUP after each.
-// What must survive: the process, its Modbus server and the look it shows
-// (the raw frame stream) through both bad files; the valid bake is taken.
+// Issue 17 faults through the relightd process.
+// - The bake file under a running relightd is truncated, replaced by garbage,
+//   then by another valid bake, with a SIGHUP after each. What must survive:
+//   the process, its Modbus server and the look it shows (the raw frame
+//   stream) through both bad files; the valid bake is taken.
+// - A replay script and a DMX recording with a line a megabyte long: relightd
+//   refuses to start with the file:line and the length, and exits cleanly.
 #include <gtest/gtest.h>
 #include <modbus/modbus.h>
 #include <unistd.h>
@@ -156,6 +159,45 @@ TEST(RelightdFaults, BadBakesOnSighupAreRefusedAndTheOldLookStays) {
   d.Signal(SIGTERM);
   EXPECT_EQ(d.Wait(), 0) << d.log();
   std::printf("%s", d.log().c_str());
+}
+
+std::string MegabyteLine(const std::string& item) {
+  std::string line = "0";
+  while (line.size() < (1u << 20)) line += " " + item;
+  return line;
+}
+
+TEST(RelightdFaults, ReplayScriptWithAMegabyteLineIsRefusedNamingFileAndLine) {
+  const std::string script = WriteTemp("fault_long.replay", "0 spot.dimmer=0.5\n" + MegabyteLine("spot.pan=1") + "\n");
+  Relightd d({testing::CornellBake(), "--replay", script, "--fps", "10", "--width", "64", "--height", "48",
+              "--exit-when-replay-done", "--script-time"},
+             "relightd_long_replay.log");
+  const int code = d.Wait();
+  EXPECT_GT(code, 0) << d.log();
+  EXPECT_LT(code, 128) << "killed by a signal:\n" << d.log();
+  EXPECT_NE(d.log().find("fault_long.replay:2: line is"), std::string::npos) << d.log();
+  EXPECT_NE(d.log().find("more than the limit"), std::string::npos) << d.log();
+}
+
+TEST(RelightdFaults, DmxRecordingWithAMegabyteLineIsRefusedNamingFileAndLine) {
+  const std::string patch = WriteTemp("fault_dmx.toml", std::string("[[dmx_fixture]]\nname = \"spot\"\ntype = \"") +
+                                                            RELIGHT_SOURCE_DIR +
+                                                            "/fixtures/dmx/relight-test-spot.toml\"\n"
+                                                            "mode = \"16 bit\"\nuniverse = 1\naddress = 10\n");
+  const std::string recording = WriteTemp("fault_long.dmxrec", "0 1 10=ff\n" + MegabyteLine("10=ff") + "\n");
+  Relightd d({testing::CornellBake(), "--dmx", patch, "--dmx-replay", recording, "--fps", "10", "--width", "64",
+              "--height", "48", "--exit-when-replay-done", "--script-time"},
+             "relightd_long_dmxrec.log");
+  const int code = d.Wait();
+  EXPECT_GT(code, 0) << d.log();
+  EXPECT_LT(code, 128) << "killed by a signal:\n" << d.log();
+  EXPECT_NE(d.log().find("fault_long.dmxrec:2: line is"), std::string::npos) << d.log();
+  // The same patch with a good recording plays: only the bad line was at fault.
+  const std::string good = WriteTemp("fault_good.dmxrec", "0 1 10=ff\n100000 1 10=80\n");
+  Relightd ok({testing::CornellBake(), "--dmx", patch, "--dmx-replay", good, "--fps", "10", "--width", "64",
+               "--height", "48", "--exit-when-replay-done", "--script-time"},
+              "relightd_good_dmxrec.log");
+  EXPECT_EQ(ok.Wait(), 0) << ok.log();
 }
 
 }  // namespace
