@@ -15,6 +15,7 @@
 #include <random>
 #include <regex>
 
+#include "bake_reload.h"
 #include "relight/bake/bake.h"
 #include "relight/hal/register_map.h"
 #include "relightd_process.h"
@@ -159,6 +160,47 @@ TEST(RelightdFaults, BadBakesOnSighupAreRefusedAndTheOldLookStays) {
   d.Signal(SIGTERM);
   EXPECT_EQ(d.Wait(), 0) << d.log();
   std::printf("%s", d.log().c_str());
+}
+
+// ReloadBake itself: unchanged files are not read again, another rig is
+// refused naming the file, the engine keeps its bake and state on any error.
+TEST(BakeReload, RefusesAnotherRigAndKeepsTheEngineOnErrors) {
+  namespace fs = std::filesystem;
+  const std::string path = ::testing::TempDir() + "/reload_unit.rlb";
+  fs::copy_file(testing::CornellBake(), path, fs::copy_options::overwrite_existing);
+  BakeFileId id = StatBakeFile(path);
+  Engine engine;
+  ASSERT_TRUE(engine.Open(path).ok());
+  ASSERT_TRUE(engine.SetDimmer(0, Q1_15::FromRatio(1, 4)).ok());
+  BakeReload result = BakeReload::kTaken;
+  ASSERT_TRUE(ReloadBake(path, &engine, &id, &result).ok());
+  EXPECT_EQ(result, BakeReload::kUnchanged);
+
+  Bake other;
+  ASSERT_TRUE(ReadBake(path, &other).ok());
+  other.luminaires[0].name = "another_spot";
+  ASSERT_TRUE(WriteBake(other, path).ok());
+  const BakeFileId before = id;
+  Status st = ReloadBake(path, &engine, &id, &result);
+  EXPECT_EQ(st.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(st.message().find(path + ": the bake's luminaires differ"), std::string::npos) << st.message();
+  EXPECT_TRUE(id == before) << "a refused file must be read again at the next SIGHUP";
+  EXPECT_EQ(engine.bake().luminaires[0].name, "spot");
+
+  fs::remove(path);
+  st = ReloadBake(path, &engine, &id, &result);
+  EXPECT_EQ(st.code(), StatusCode::kNotFound) << st.ToString();
+  EXPECT_NE(st.message().find(path), std::string::npos) << st.message();
+
+  // The same rig again, brighter white: taken, the dimmer kept.
+  other.luminaires[0].name = "spot";
+  other.white_luminance *= 2;
+  ASSERT_TRUE(WriteBake(other, path).ok());
+  ASSERT_TRUE(ReloadBake(path, &engine, &id, &result).ok());
+  EXPECT_EQ(result, BakeReload::kTaken);
+  EXPECT_EQ(engine.bake().white_luminance, other.white_luminance);
+  EXPECT_EQ(engine.state(0).dimmer.raw(), Q1_15::FromRatio(1, 4).raw());
+  EXPECT_TRUE(id == StatBakeFile(path));
 }
 
 std::string MegabyteLine(const std::string& item) {

@@ -10,6 +10,7 @@
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <poll.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <atomic>
@@ -195,6 +196,35 @@ TEST_F(ModbusTcpAbuse, FiveHundredConnectionsAtOnceLeaveFdsBoundedAndTheGoodClie
   EXPECT_EQ(modbus_read_registers(late.ctx(), kRegDimmer, 1, &back), 1) << modbus_strerror(errno);
   EXPECT_EQ(back, 77);
   EXPECT_LE(OpenFds(), fds_before + 2) << "sockets left open after the flood";
+}
+
+// The process runs out of file descriptors: a newcomer waits in the accept
+// queue (the server does not spin on it), the clients it has are served, and
+// the newcomer is taken once descriptors are free again.
+TEST_F(ModbusTcpAbuse, OutOfFileDescriptorsNewcomersWaitAndTheOthersAreServed) {
+  TcpClient good(server_->port());
+  ASSERT_TRUE(good.Connect());
+  GoodRoundTrip(good, 5);
+  rlimit old{};
+  ASSERT_EQ(getrlimit(RLIMIT_NOFILE, &old), 0);
+  rlimit tight = old;
+  tight.rlim_cur = static_cast<rlim_t>(OpenFds() + 64);
+  ASSERT_EQ(setrlimit(RLIMIT_NOFILE, &tight), 0);
+  std::vector<int> fillers;
+  for (int fd; (fd = open("/dev/null", O_RDONLY | O_CLOEXEC)) >= 0;) fillers.push_back(fd);
+  close(fillers.back());  // one descriptor left: the newcomer's own socket
+  fillers.pop_back();
+  TcpClient newcomer(server_->port());
+  ASSERT_TRUE(newcomer.Connect());  // the kernel completes it; the server cannot accept it
+  const double worst_ms = KeepServedFor(good, 600);
+  EXPECT_EQ(server_->counters().clients, 1u) << "accepted without a descriptor?";
+  for (int fd : fillers) close(fd);
+  ASSERT_EQ(setrlimit(RLIMIT_NOFILE, &old), 0);
+  uint16_t back = 0;
+  EXPECT_EQ(modbus_read_registers(newcomer.ctx(), kRegDimmer, 1, &back), 1) << modbus_strerror(errno);
+  EXPECT_EQ(server_->counters().clients, 2u);
+  std::printf("out of fds: good client worst round trip %.1f ms; the newcomer served once fds were free\n", worst_ms);
+  EXPECT_LT(worst_ms, 1000.0);
 }
 
 }  // namespace

@@ -63,6 +63,7 @@ struct ModbusTcpServer::Impl {
   std::vector<in_addr_t> allow;
   int64_t last_refusal_log_us = INT64_MIN / 2;
   int refusals_not_logged = 0;
+  bool accept_paused = false;  // out of fds at the last accept: the listener skips one poll round
 
   Impl(ModbusTcpConfig c, RegisterBank& b) : config(std::move(c)), bank(b) {}
 
@@ -87,7 +88,19 @@ struct ModbusTcpServer::Impl {
     sockaddr_in addr{};
     socklen_t len = sizeof addr;
     const int fd = accept4(listen_fd, reinterpret_cast<sockaddr*>(&addr), &len, SOCK_NONBLOCK | SOCK_CLOEXEC);
-    if (fd < 0) return false;
+    if (fd < 0) {
+      if (errno == EMFILE || errno == ENFILE || errno == ENOBUFS || errno == ENOMEM) {
+        // Out of descriptors: the pending connection stays queued. Stop
+        // polling the listener for a round, or poll() would spin on it.
+        if (!accept_paused) {
+          Log(LogLevel::kWarning, "modbus-tcp: cannot accept: %s; new connections wait", std::strerror(errno));
+        }
+        accept_paused = true;
+      }
+      return false;
+    }
+    if (accept_paused) Log(LogLevel::kInfo, "modbus-tcp: accepting connections again");
+    accept_paused = false;
     const std::string peer = PeerName(addr);
     const bool allowed = allow.empty() || std::find(allow.begin(), allow.end(), addr.sin_addr.s_addr) != allow.end();
     if (!allowed || static_cast<int>(clients.size()) >= config.max_clients) {
@@ -169,7 +182,7 @@ struct ModbusTcpServer::Impl {
     for (;;) {
       fds.clear();
       fds.push_back({wake[0], POLLIN, 0});
-      fds.push_back({listen_fd, POLLIN, 0});
+      fds.push_back({listen_fd, static_cast<short>(accept_paused ? 0 : POLLIN), 0});
       for (const auto& c : clients) fds.push_back({c->fd, POLLIN, 0});
       const int rc = poll(fds.data(), fds.size(), 250);
       if (rc < 0 && errno != EINTR) {
@@ -195,7 +208,11 @@ struct ModbusTcpServer::Impl {
         }
         if (!keep) Close(i, why);
       }
-      if (fds[1].revents & POLLIN) AcceptBatch();
+      if (fds[1].revents & POLLIN) {
+        AcceptBatch();
+      } else if (accept_paused) {
+        Accept();  // one try a round (poll's 250 ms timeout, or a client's traffic)
+      }
     }
   }
 
