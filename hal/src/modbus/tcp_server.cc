@@ -112,8 +112,11 @@ struct ModbusTcpServer::Impl {
         ++refusals_not_logged;
         return true;
       }
-      Log(LogLevel::kWarning, "modbus-tcp: refused %s (%s); %d more refused since the last such line", peer.c_str(),
-          allowed ? "too many clients: max_clients reached" : "not in the allow-list", refusals_not_logged);
+      const std::string more =
+          refusals_not_logged > 0 ? "; " + std::to_string(refusals_not_logged) + " more refused since the last such line"
+                                  : "";
+      Log(LogLevel::kWarning, "modbus-tcp: refused %s (%s)%s", peer.c_str(),
+          allowed ? "too many clients: max_clients reached" : "not in the allow-list", more.c_str());
       last_refusal_log_us = now_us;
       refusals_not_logged = 0;
       return true;
