@@ -21,7 +21,7 @@ JOBS=${RELIGHT_JOBS:-$(nproc)}
 start=$(date +%s)
 
 # Test binaries (and fuzz corpus replays) of --inputs.
-INPUT_TARGETS=(bake_io_test replay_plan_test hal_core_test hal_replay_test hal_modbus_test hal_dmx_test
+INPUT_TARGETS=(bake_io_test replay_plan_test hal_core_test hal_replay_test hal_modbus_test hal_modbus_abuse_test hal_dmx_test
                hal_config_file_test
                bake_fuzz bake_sections_fuzz patch_fuzz dmx_patch_fuzz qxf_fuzz fixture_type_toml_fuzz
                replay_fuzz param_text_fuzz modbus_request_fuzz dmx_frame_fuzz)

@@ -25,6 +25,7 @@ port = 0
 allow = ["127.0.0.1", "10.0.0.7"]
 max_clients = 4
 idle_timeout_ms = 5000
+request_timeout_ms = 1500
 
 [modbus_rtu]
 device = "/dev/ttyUSB0"
@@ -79,6 +80,8 @@ TEST(Patch, ParsesEverySection) {
   EXPECT_EQ(p.modbus_tcp.port, 0);
   EXPECT_EQ(p.modbus_tcp.allow.size(), 2u);
   EXPECT_EQ(p.modbus_tcp.max_clients, 4);
+  EXPECT_EQ(p.modbus_tcp.idle_timeout_ms, 5000);
+  EXPECT_EQ(p.modbus_tcp.request_timeout_ms, 1500);
   EXPECT_TRUE(p.modbus_rtu.enabled);
   EXPECT_EQ(p.modbus_rtu.parity, 'E');
   EXPECT_EQ(p.modbus_rtu.unit_id, 7);

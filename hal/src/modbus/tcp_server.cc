@@ -2,6 +2,13 @@
 // socket and every client; requests cut from per-client buffers by their
 // MBAP length and answered by libmodbus (modbus_reply) on that client's
 // socket.
+//
+// Abuse (issue 17, docs/modbus.md "Limits"): at most max_clients at once,
+// the rest refused and closed at once with a log line; a client silent for
+// idle_timeout_ms is closed; a request begun must be whole within
+// request_timeout_ms, so a sender trickling a byte at a time (slowloris)
+// cannot hold a slot; pending connections are accepted (and refused) in
+// batches so a flood does not starve the clients being served.
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
@@ -25,6 +32,7 @@ namespace {
 
 constexpr int kMbapLength = 7;  // transaction(2) protocol(2) length(2) unit(1)
 constexpr size_t kClientBuffer = 2 * MODBUS_TCP_MAX_ADU_LENGTH;
+constexpr int kAcceptBatch = 64;  // connections taken per poll round: a flood cannot starve the clients
 
 struct Client {
   int fd = -1;
@@ -32,6 +40,7 @@ struct Client {
   uint8_t buf[kClientBuffer];
   size_t len = 0;
   int64_t last_us = 0;
+  int64_t partial_since_us = 0;  // when the unfinished request in buf began (0: none)
 };
 
 std::string PeerName(const sockaddr_in& addr) {
@@ -52,6 +61,9 @@ struct ModbusTcpServer::Impl {
   std::thread thread;
   std::vector<std::unique_ptr<Client>> clients;
   std::vector<in_addr_t> allow;
+  int64_t last_refusal_log_us = INT64_MIN / 2;
+  int refusals_not_logged = 0;
+  bool accept_paused = false;  // out of fds at the last accept: the listener skips one poll round
 
   Impl(ModbusTcpConfig c, RegisterBank& b) : config(std::move(c)), bank(b) {}
 
@@ -62,19 +74,52 @@ struct ModbusTcpServer::Impl {
     bank.clients().store(static_cast<uint32_t>(clients.size()));
   }
 
-  void Accept() {
+  // Takes up to kAcceptBatch pending connections; false when none is left.
+  bool AcceptBatch() {
+    for (int i = 0; i < kAcceptBatch; ++i) {
+      if (!Accept()) return false;
+    }
+    return true;
+  }
+
+  // One pending connection: kept, or refused and closed. False: none pending
+  // (or no fd left: EMFILE; the next round tries again).
+  bool Accept() {
     sockaddr_in addr{};
     socklen_t len = sizeof addr;
     const int fd = accept4(listen_fd, reinterpret_cast<sockaddr*>(&addr), &len, SOCK_NONBLOCK | SOCK_CLOEXEC);
-    if (fd < 0) return;  // the peer gave up between poll() and accept(), or EMFILE: try again later
+    if (fd < 0) {
+      if (errno == EMFILE || errno == ENFILE || errno == ENOBUFS || errno == ENOMEM) {
+        // Out of descriptors: the pending connection stays queued. Stop
+        // polling the listener for a round, or poll() would spin on it.
+        if (!accept_paused) {
+          Log(LogLevel::kWarning, "modbus-tcp: cannot accept: %s; new connections wait", std::strerror(errno));
+        }
+        accept_paused = true;
+      }
+      return false;
+    }
+    if (accept_paused) Log(LogLevel::kInfo, "modbus-tcp: accepting connections again");
+    accept_paused = false;
     const std::string peer = PeerName(addr);
     const bool allowed = allow.empty() || std::find(allow.begin(), allow.end(), addr.sin_addr.s_addr) != allow.end();
     if (!allowed || static_cast<int>(clients.size()) >= config.max_clients) {
       bank.refused().fetch_add(1);
-      Log(LogLevel::kWarning, "modbus-tcp: refused %s (%s)", peer.c_str(),
-          allowed ? "too many clients" : "not in the allow-list");
       close(fd);
-      return;
+      // One line a second at most: a flood must not flood the log too.
+      const int64_t now_us = MonotonicUs();
+      if (now_us - last_refusal_log_us < 1000000) {
+        ++refusals_not_logged;
+        return true;
+      }
+      const std::string more =
+          refusals_not_logged > 0 ? "; " + std::to_string(refusals_not_logged) + " more refused since the last such line"
+                                  : "";
+      Log(LogLevel::kWarning, "modbus-tcp: refused %s (%s)%s", peer.c_str(),
+          allowed ? "too many clients: max_clients reached" : "not in the allow-list", more.c_str());
+      last_refusal_log_us = now_us;
+      refusals_not_logged = 0;
+      return true;
     }
     const int one = 1;
     setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
@@ -85,6 +130,7 @@ struct ModbusTcpServer::Impl {
     clients.push_back(std::move(client));
     bank.clients().store(static_cast<uint32_t>(clients.size()));
     Log(LogLevel::kInfo, "modbus-tcp: client %s connected", peer.c_str());
+    return true;
   }
 
   // Reads what is there and answers every complete request. False: close it.
@@ -125,6 +171,12 @@ struct ModbusTcpServer::Impl {
     }
     std::memmove(c.buf, c.buf + start, c.len - start);
     c.len -= start;
+    // The clock of an unfinished request starts with its first byte.
+    if (c.len == 0) {
+      c.partial_since_us = 0;
+    } else if (start > 0 || c.partial_since_us == 0) {
+      c.partial_since_us = arrival_us;
+    }
     return true;
   }
 
@@ -133,7 +185,7 @@ struct ModbusTcpServer::Impl {
     for (;;) {
       fds.clear();
       fds.push_back({wake[0], POLLIN, 0});
-      fds.push_back({listen_fd, POLLIN, 0});
+      fds.push_back({listen_fd, static_cast<short>(accept_paused ? 0 : POLLIN), 0});
       for (const auto& c : clients) fds.push_back({c->fd, POLLIN, 0});
       const int rc = poll(fds.data(), fds.size(), 250);
       if (rc < 0 && errno != EINTR) {
@@ -148,14 +200,22 @@ struct ModbusTcpServer::Impl {
         const short ev = fds[2 + i].revents;
         const char* why = "idle too long; closed";
         bool keep = true;
-        if (ev & (POLLIN | POLLHUP | POLLERR)) {
-          keep = Serve(*clients[i], &why);
-        } else if (now_us - clients[i]->last_us > int64_t{config.idle_timeout_ms} * 1000) {
+        Client& c = *clients[i];
+        if (ev & (POLLIN | POLLHUP | POLLERR)) keep = Serve(c, &why);
+        if (keep && now_us - c.last_us > int64_t{config.idle_timeout_ms} * 1000) {
+          keep = false;
+        } else if (keep && c.partial_since_us != 0 &&
+                   now_us - c.partial_since_us > int64_t{config.request_timeout_ms} * 1000) {
+          why = "too slow: a request not whole within request_timeout_ms; closed";
           keep = false;
         }
         if (!keep) Close(i, why);
       }
-      if (fds[1].revents & POLLIN) Accept();
+      if (fds[1].revents & POLLIN) {
+        AcceptBatch();
+      } else if (accept_paused) {
+        Accept();  // one try a round (poll's 250 ms timeout, or a client's traffic)
+      }
     }
   }
 
@@ -209,7 +269,9 @@ Status ModbusTcpServer::DoStart() {
   // libmodbus treats an address starting with '0' as "every interface".
   m.ctx = modbus_new_tcp(m.config.listen.c_str(), m.config.port);
   if (m.ctx == nullptr) return Status(StatusCode::kInternal, where + ": modbus_new_tcp failed");
-  m.listen_fd = modbus_tcp_listen(m.ctx, 16);
+  // A deep accept queue: a burst of connections waits there to be refused
+  // at once instead of having its SYNs dropped and retried for seconds.
+  m.listen_fd = modbus_tcp_listen(m.ctx, 128);
   if (m.listen_fd < 0) {
     const std::string why = std::strerror(errno);
     m.Shutdown();

@@ -221,7 +221,7 @@ void ParseFixture(const Table& t, Patch* patch) {
 }
 
 void ParseTcp(const Table& t, Patch* patch) {
-  t.CheckKeys({"listen", "port", "allow", "max_clients", "idle_timeout_ms"});
+  t.CheckKeys({"listen", "port", "allow", "max_clients", "idle_timeout_ms", "request_timeout_ms"});
   ModbusTcpConfig& c = patch->modbus_tcp;
   c.enabled = true;
   c.listen = t.String("listen", c.listen);
@@ -241,6 +241,7 @@ void ParseTcp(const Table& t, Patch* patch) {
   }
   c.max_clients = static_cast<int>(t.Int("max_clients", c.max_clients, 1, 256));
   c.idle_timeout_ms = static_cast<int>(t.Int("idle_timeout_ms", c.idle_timeout_ms, 100, 86400000));
+  c.request_timeout_ms = static_cast<int>(t.Int("request_timeout_ms", c.request_timeout_ms, 100, 600000));
 }
 
 void ParseRtu(const Table& t, Patch* patch) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <ctime>
 
+#include "bake_reload.h"
 #include "relight/base/clock.h"
 #include "relight/base/log.h"
 #include "relight/control/engine_binding.h"
@@ -90,6 +91,9 @@ struct Daemon::Impl {
   std::function<void(const FrameInfo&)> observer;
   DaemonStats stats;
   int64_t period_us = 33333;
+  BakeFileId bake_id;      // the bake file as loaded: SIGHUP re-reads it when it changed
+  bool force_render = false;  // a new bake: draw the next frame even if no input moved
+  Status fatal;            // the renderer could not take a new bake: Run stops with this
 
   std::vector<hal::InputSource*> AllSources() const {
     std::vector<hal::InputSource*> all;
@@ -180,8 +184,38 @@ struct Daemon::Impl {
     return Status::Ok();
   }
 
+  // The bake's camera with the command line's changes.
+  CameraView View() const {
+    CameraView view = cli::CameraFromBake(engine.bake().camera);
+    for (int i = 0; i < 3; ++i) {
+      if (config.camera_pos) view.position[i] = (*config.camera_pos)[static_cast<size_t>(i)];
+      if (config.camera_target) view.target[i] = (*config.camera_target)[static_cast<size_t>(i)];
+    }
+    if (config.fov_y_deg > 0) view.fov_y_deg = config.fov_y_deg;
+    return view;
+  }
+
+  // SIGHUP, first step: a changed bake file is read and, if valid, taken
+  // (bake_reload.h); a bad one is refused and the running bake stays.
+  void ReloadBakeFile() {
+    BakeReload result = BakeReload::kUnchanged;
+    if (Status st = ReloadBake(config.bake_path, &engine, &bake_id, &result); !st.ok()) {
+      ++stats.reload_failures;
+      Log(LogLevel::kError, "relightd: bake reload refused, keeping the running bake: %s", st.ToString().c_str());
+      return;
+    }
+    if (result == BakeReload::kUnchanged) return;
+    fatal = pipeline.Init(engine, config.width, config.height, View(), config.white_q12);
+    if (!fatal.ok()) return;
+    force_render = true;
+    Log(LogLevel::kInfo, "relightd: bake %s reloaded (%u vertices, %d luminaires)", config.bake_path.c_str(),
+        engine.vertex_count(), engine.luminaire_count());
+  }
+
   void Reload() {
     ++stats.reloads;
+    ReloadBakeFile();
+    if (!fatal.ok()) return;
     hal::Patch p;
     if (Status st = LoadResolved(&p); !st.ok()) {
       ++stats.reload_failures;
@@ -286,6 +320,7 @@ Status Daemon::Open(const DaemonConfig& config) {
     return Status(StatusCode::kInvalidArgument, "frame rate must be in 0.1..1000 frames/s");
   }
   m.period_us = static_cast<int64_t>(1e6 / config.fps + 0.5);
+  m.bake_id = StatBakeFile(config.bake_path);  // before reading: a change meanwhile is read again on SIGHUP
   RELIGHT_RETURN_IF_ERROR(m.engine.Open(config.bake_path));
   hal::Patch p;
   RELIGHT_RETURN_IF_ERROR(m.LoadResolved(&p));
@@ -303,13 +338,7 @@ Status Daemon::Open(const DaemonConfig& config) {
     return Status(StatusCode::kInvalidArgument,
                   "--exit-when-replay-done needs a replay script (--replay, [replay] or --dmx-replay)");
   }
-  CameraView view = cli::CameraFromBake(m.engine.bake().camera);
-  for (int i = 0; i < 3; ++i) {
-    if (config.camera_pos) view.position[i] = (*config.camera_pos)[static_cast<size_t>(i)];
-    if (config.camera_target) view.target[i] = (*config.camera_target)[static_cast<size_t>(i)];
-  }
-  if (config.fov_y_deg > 0) view.fov_y_deg = config.fov_y_deg;
-  return m.pipeline.Init(m.engine, config.width, config.height, view, config.white_q12);
+  return m.pipeline.Init(m.engine, config.width, config.height, m.View(), config.white_q12);
 }
 
 void Daemon::AddSink(std::unique_ptr<FrameSink> sink) { impl_->sinks.push_back(std::move(sink)); }
@@ -347,10 +376,12 @@ Status Daemon::Run(const std::atomic<bool>& stop, std::atomic<bool>& reload) {
       if (!early && MonotonicUs() < deadline_us) {
         --frame;  // woken for a reload only
         if (reload.exchange(false)) m.Reload();
+        RELIGHT_RETURN_IF_ERROR(m.fatal);
         continue;
       }
     }
     if (reload.exchange(false)) m.Reload();
+    RELIGHT_RETURN_IF_ERROR(m.fatal);
     // Daemon time: the tick's script time, or now for an early frame or a tick following live input.
     const int64_t start_us = MonotonicUs();
     const int64_t time_us = early || follow_input ? start_us - t0_us : tick * m.period_us;
@@ -359,7 +390,8 @@ Status Daemon::Run(const std::atomic<bool>& stop, std::atomic<bool>& reload) {
       if (arrival > pending_arrival_us) pending_arrival_us = arrival;
     }
     // Nothing moved since the last frame: send it again instead of redrawing it.
-    const bool render = m.ApplyFader(time_us) > 0 || !have_frame;
+    const bool render = m.ApplyFader(time_us) > 0 || !have_frame || m.force_render;
+    m.force_render = false;
     int64_t render_us = 0;
     if (render) {
       const int64_t render_start_us = MonotonicUs();

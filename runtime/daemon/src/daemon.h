@@ -107,7 +107,9 @@ class Daemon {
   Status Start();
   // Renders until `stop` is set, max_frames are out or (with
   // exit_when_replay_done) the replay is over. `reload` set: re-read the
-  // patch (on an error the old patch stays). Returns the error that stopped it.
+  // bake if its file changed (bake_reload.h: a bad one is refused, the
+  // running one stays), then the patch (on an error the old patch stays).
+  // Returns the error that stopped it.
   Status Run(const std::atomic<bool>& stop, std::atomic<bool>& reload);
 
   Engine& engine();

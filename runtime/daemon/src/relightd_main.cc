@@ -6,7 +6,8 @@
 //   relightd stage.rlb --dmx stage_patch.toml --fb /dev/fb0          # a console through olad
 //   relightd stage.rlb --dmx stage_patch.toml --dmx-replay stage.dmxrec --png f_%04d.png --exit-when-replay-done
 //
-// SIGINT/SIGTERM: clean shutdown. SIGHUP: re-read the patch. Logs on stderr.
+// SIGINT/SIGTERM: clean shutdown. SIGHUP: re-read the bake (if its file
+// changed) and the patch; on an error the running ones stay. Logs on stderr.
 #include <csignal>
 #include <cmath>
 #include <cstdio>
@@ -60,7 +61,8 @@ int main(int argc, char** argv) {
       "(Modbus TCP/RTU server, Modbus poller, GPIO), from a replay script and from DMX (--dmx: a\n"
       "lighting console through olad, or --dmx-replay: a recorded show), relights the baked room\n"
       "and renders frames at a steady rate to the sinks given (--png, --ppm, --raw, --fb).\n"
-      "SIGINT/SIGTERM stop it cleanly; SIGHUP re-reads the patch. Register map: docs/modbus.md;\n"
+      "SIGINT/SIGTERM stop it cleanly; SIGHUP re-reads the bake (when its file changed; a bad one is\n"
+      "refused) and the patch. Register map: docs/modbus.md;\n"
       "DMX, olad and consoles: docs/dmx.md."};
   relight::daemon::DaemonConfig config;
   std::string png, ppm, raw, fb, fb_size, sheet, camera_pos, camera_target;

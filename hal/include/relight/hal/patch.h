@@ -55,6 +55,7 @@ struct ModbusTcpConfig {
   std::vector<std::string> allow;      // client IPv4 addresses; empty = any
   int max_clients = 16;
   int idle_timeout_ms = 60000;         // a client silent this long is closed
+  int request_timeout_ms = 5000;       // a request begun must be whole this soon (slow senders are closed)
 };
 
 struct ModbusRtuConfig {
