@@ -82,7 +82,8 @@ void BuildHierarchicalSolver(BakerCore* core, Progress* progress) {
   }
   const double epsilon = o.link_epsilon * flux / area;
   std::vector<HierarchyLink> links =
-      RefineLinks(mesh, *core->visibility, core->samples, h, brightness, epsilon, o.threads,
+      RefineLinks(mesh, *core->visibility, core->samples, h, brightness, epsilon,
+                  o.adaptive_visibility, o.threads,
                   progress);
   core->report.nodes = h.nodes.size();
   core->report.links = links.size();

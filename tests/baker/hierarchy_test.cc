@@ -174,8 +174,8 @@ TEST(HierarchyLinks, DeterministicWhateverTheThreadCount) {
   const PatchSampleSets samples = BuildPatchSampleSets(mesh);
   const Hierarchy h = BuildHierarchy(mesh);
   const std::vector<double> brightness(h.nodes.size(), 1.0);
-  const auto one = RefineLinks(mesh, vis, samples, h, brightness, 2e-3, 1, nullptr);
-  const auto two = RefineLinks(mesh, vis, samples, h, brightness, 2e-3, 2, nullptr);
+  const auto one = RefineLinks(mesh, vis, samples, h, brightness, 2e-3, false, 1, nullptr);
+  const auto two = RefineLinks(mesh, vis, samples, h, brightness, 2e-3, false, 2, nullptr);
   ASSERT_EQ(one.size(), two.size());
   for (size_t k = 0; k < one.size(); ++k) {
     EXPECT_EQ(one[k].p, two[k].p);

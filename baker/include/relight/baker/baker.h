@@ -39,6 +39,8 @@ struct BakeOptions {
   // exitance exceeds this fraction of the brightest exitance (BF refinement);
   // 0 links every pair of patches (the dense solver's form factors).
   double link_epsilon = 1e-3;
+  // Hierarchical: 256 visibility rays (not 16) for node pairs whose 16 rays disagree.
+  bool adaptive_visibility = false;
   // Hierarchical: sweeps stop when the residual |S + rho K M - M| of each
   // right-hand side is at most this x (1 - largest reflectance) of its peak
   // exitance, so the exitance's error is at most this fraction of the peak
