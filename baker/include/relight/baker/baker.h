@@ -95,6 +95,11 @@ class Baker {
   // the degree its narrowest angle needs, report().zoom_degrees), quantised
   // into the runtime's format.
   relight::Bake Bake();
+  // Part of a bake split over processes (relight/baker/distributed.h): only
+  // the luminaires `mine` accepts, in scene order; `whole` adds what the
+  // writing process alone needs (the display white, the stored hierarchy).
+  // Bake() is BakePart(every luminaire, true).
+  relight::Bake BakePart(const std::function<bool(size_t)>& mine, bool whole);
   // The scene lit by the exact distributions at `settings` (one per luminaire,
   // in scene order), float64, no basis.
   ReferenceResult Reference(const std::vector<FixtureSetting>& settings);
@@ -102,6 +107,8 @@ class Baker {
   std::vector<FixtureSetting> DefaultSettings() const;
 
   const BakeReport& report() const;
+  // The scene as baked (zooming beams carry the SH degree chosen for them).
+  const Scene& scene() const;
 
  private:
   struct Impl;
