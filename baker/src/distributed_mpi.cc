@@ -90,6 +90,28 @@ void DistributedSession::Abort(int code) const {
 
 bool DistributedSession::Available() { return true; }
 
+std::vector<uint8_t> DistributedSession::AllGather(const std::vector<uint8_t>& mine) const {
+  if (ranks_ == 1) return mine;
+  // Sizes first, then the bytes; int counts, so a share is below 2 GiB.
+  if (mine.size() > static_cast<size_t>(INT_MAX)) {
+    throw std::runtime_error("rank " + std::to_string(rank_) + ": " +
+                             std::to_string(mine.size()) + " bytes to share, over 2 GiB");
+  }
+  const int size = static_cast<int>(mine.size());
+  std::vector<int> sizes(static_cast<size_t>(ranks_)), offsets(static_cast<size_t>(ranks_), 0);
+  MPI_Allgather(&size, 1, MPI_INT, sizes.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  size_t total = 0;
+  for (int r = 0; r < ranks_; ++r) {
+    if (total > static_cast<size_t>(INT_MAX)) throw std::runtime_error("over 2 GiB to share");
+    offsets[static_cast<size_t>(r)] = static_cast<int>(total);
+    total += static_cast<size_t>(sizes[static_cast<size_t>(r)]);
+  }
+  std::vector<uint8_t> all(total);
+  MPI_Allgatherv(mine.data(), size, MPI_BYTE, all.data(), sizes.data(), offsets.data(), MPI_BYTE,
+                 MPI_COMM_WORLD);
+  return all;
+}
+
 relight::Bake DistributedBake(Baker* baker, const DistributedSession& session,
                               BakeReport* report) {
   *report = baker->report();

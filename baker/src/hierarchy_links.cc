@@ -223,7 +223,8 @@ double NodeVisibleFraction(const Hierarchy& h, const NodeSamples& samples, const
 std::vector<HierarchyLink> RefineLinks(const Mesh& mesh, const Visibility& vis,
                                        const PatchSampleSets& patch_samples, const Hierarchy& h,
                                        const std::vector<double>& brightness, double epsilon,
-                                       bool adaptive, int threads, Progress* progress) {
+                                       bool adaptive, int threads, Progress* progress,
+                                       int share_rank, int share_ranks) {
   const NodeSamples samples(h, patch_samples);
   const Refiner refiner(mesh, vis, patch_samples, h, samples, brightness, epsilon, adaptive);
 
@@ -244,7 +245,19 @@ std::vector<HierarchyLink> RefineLinks(const Mesh& mesh, const Visibility& vis,
     }
   }
   std::sort(pairs.begin(), pairs.end(),
-            [](const RootPair& x, const RootPair& y) { return x.weight > y.weight; });
+            [](const RootPair& x, const RootPair& y) {
+              return x.weight != y.weight ? x.weight > y.weight
+                                          : (x.p != y.p ? x.p < y.p : x.q < y.q);
+            });
+  // A distributed bake's share: dealt round the ranks by size, so each gets
+  // big and small pairs alike.
+  if (share_ranks > 1) {
+    size_t kept = 0;
+    for (size_t k = 0; k < pairs.size(); ++k)
+      if (static_cast<int>(k % static_cast<size_t>(share_ranks)) == share_rank)
+        pairs[kept++] = pairs[k];
+    pairs.resize(kept);
+  }
   // Progress in units of the pairs' area products (a rough measure of their work).
   double total_weight = 0;
   for (const RootPair& r : pairs) total_weight += r.weight;

@@ -247,6 +247,8 @@ int Run(const Args& args, const relight::baker::DistributedSession& mpi) {
   options.store_hierarchy = !args.no_hierarchy;
   options.lid_samples = args.lid_samples;
   options.progress = !args.quiet && mpi.writer();
+  // The links' refinement split over the ranks (a reference: rank 0 alone).
+  options.share = args.reference ? nullptr : &mpi;
   // Ranks sharing a machine share its cores (docs/distributed-bake.md).
   if (options.threads == 0 && mpi.local_ranks() > 1) {
     options.threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()) /

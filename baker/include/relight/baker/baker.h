@@ -29,6 +29,8 @@ namespace relight::baker {
 enum class SolverKind { kAuto, kDense, kHierarchical };
 constexpr size_t kAutoDenseMaxPatches = 4000;
 
+class WorkShare;  // relight/baker/work_share.h
+
 struct BakeOptions {
   std::optional<DirectModeKind> direct_mode;  // overrides every luminaire's mode when set
   int threads = 0;                            // 0 = all cores
@@ -41,6 +43,9 @@ struct BakeOptions {
   double link_epsilon = 1e-3;
   // Hierarchical: 256 visibility rays (not 16) for node pairs whose 16 rays disagree.
   bool adaptive_visibility = false;
+  // Distributed bake: this process refines its share of the links and swaps
+  // them with the others (relight/baker/work_share.h). Null: all of them here.
+  const WorkShare* share = nullptr;
   // Hierarchical: sweeps stop when the residual |S + rho K M - M| of each
   // right-hand side is at most this x (1 - largest reflectance) of its peak
   // exitance, so the exitance's error is at most this fraction of the peak

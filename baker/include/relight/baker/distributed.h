@@ -16,19 +16,21 @@
 #include "relight/bake/bake.h"
 #include "relight/baker/baker.h"
 #include "relight/baker/scene.h"
+#include "relight/baker/work_share.h"
 
 namespace relight::baker {
 
-class DistributedSession {
+class DistributedSession : public WorkShare {
  public:
   // MPI_Init (when built with MPI); argc/argv as main received them.
   DistributedSession(int* argc, char*** argv);
-  ~DistributedSession();  // MPI_Finalize
+  ~DistributedSession() override;  // MPI_Finalize
   DistributedSession(const DistributedSession&) = delete;
   DistributedSession& operator=(const DistributedSession&) = delete;
 
-  int rank() const { return rank_; }
-  int ranks() const { return ranks_; }
+  int rank() const override { return rank_; }
+  int ranks() const override { return ranks_; }
+  std::vector<uint8_t> AllGather(const std::vector<uint8_t>& mine) const override;
   bool writer() const { return rank_ == 0; }
   // Nothing to do here: started by mpirun as a rank above 0 of a build
   // without MPI (rank 0 then bakes alone).
