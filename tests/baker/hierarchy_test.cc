@@ -185,6 +185,39 @@ TEST(HierarchyLinks, DeterministicWhateverTheThreadCount) {
   }
 }
 
+// Issue 16: a distributed bake refines each rank's share of the surface
+// pairs; the shares together are exactly the one-process links (none lost,
+// none twice, the same factors).
+TEST(HierarchyLinks, SharesOverRanksAddUpToTheWhole) {
+  const Scene scene = Room(0.25);
+  const Mesh mesh = BuildMesh(scene);
+  const Visibility vis(mesh, 1);
+  const PatchSampleSets samples = BuildPatchSampleSets(mesh);
+  const Hierarchy h = BuildHierarchy(mesh);
+  const std::vector<double> brightness(h.nodes.size(), 1.0);
+  const auto whole = RefineLinks(mesh, vis, samples, h, brightness, 2e-3, false, 2, nullptr);
+  std::vector<HierarchyLink> shares;
+  size_t smallest = whole.size();
+  for (int rank = 0; rank < 3; ++rank) {
+    const auto part =
+        RefineLinks(mesh, vis, samples, h, brightness, 2e-3, false, 2, nullptr, rank, 3);
+    smallest = std::min(smallest, part.size());
+    shares.insert(shares.end(), part.begin(), part.end());
+  }
+  EXPECT_GT(smallest, 0u);  // every rank got work
+  std::sort(shares.begin(), shares.end(), [](const HierarchyLink& x, const HierarchyLink& y) {
+    return x.p != y.p ? x.p < y.p : x.q < y.q;
+  });
+  ASSERT_EQ(shares.size(), whole.size());
+  for (size_t k = 0; k < whole.size(); ++k) {
+    EXPECT_EQ(shares[k].p, whole[k].p);
+    EXPECT_EQ(shares[k].q, whole[k].q);
+    EXPECT_EQ(shares[k].f_pq, whole[k].f_pq);
+    EXPECT_EQ(shares[k].f_qp, whole[k].f_qp);
+    EXPECT_EQ(shares[k].g_pq, whole[k].g_pq);
+  }
+}
+
 // Per leaf, the total fraction of its light that the links deliver
 // elsewhere in a closed box (each ancestor's links, with their gradients
 // evaluated at the leaf's centre): 1 for an exact operator. Returns the
