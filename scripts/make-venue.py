@@ -133,7 +133,7 @@ def truss(obj, y, z, x0, x1, bays):
         obj.box((x, y + s - t, z + t), (x + t, y + s, z + s - t))
 
 
-def build(target, k, stall_rows, balcony_rows, bays):
+def build(per_row, k, stall_rows, balcony_rows, bays):
     obj = Obj()
     # Stage deck (front and top) and the proscenium wall with its opening.
     obj.material = "stage_floor"
@@ -149,10 +149,10 @@ def build(target, k, stall_rows, balcony_rows, bays):
     obj.quad((opening[0], STAGE_Y - 0.4, opening[2]), (opening[1], STAGE_Y - 0.4, opening[2]),
              (opening[1], STAGE_Y - 0.4, H), (opening[0], STAGE_Y - 0.4, H))
     # Stalls, then the balcony slab and its rake.
-    seats = rake(obj, 1.5, W - 1.5, STALLS_Y1, stall_rows, 0.0, 0.12, 999, k, "rake")
+    seats = rake(obj, 1.5, W - 1.5, STALLS_Y1, stall_rows, 0.0, 0.12, per_row, k, "rake")
     obj.material = "balcony"
     obj.box((0.01, 0.01, BALC_Z - 0.5), (W - 0.01, BALC_Y1, BALC_Z), omit=("-y", "-x", "+x"))
-    seats += rake(obj, 1.5, W - 1.5, BALC_Y1 - 0.3, balcony_rows, BALC_Z, 0.3, 999, k, "rake")
+    seats += rake(obj, 1.5, W - 1.5, BALC_Y1 - 0.3, balcony_rows, BALC_Z, 0.3, per_row, k, "rake")
     for y in (30.0, 33.0, 36.0):
         truss(obj, y, 9.5, 2.0, W - 2.0, bays)
     truss(obj, 22.0, 11.0, 3.0, W - 3.0, bays)
@@ -160,21 +160,25 @@ def build(target, k, stall_rows, balcony_rows, bays):
 
 
 def choose(target):
-    """Seat detail and rows for about `target` triangles (searched, deterministic)."""
+    """Seats per row, rows, backrest facets and truss bays for about `target`
+    triangles (an exhaustive search, deterministic): within 2 % of the
+    target, the most seats (a bigger house before a finer seat), then the
+    least detail; else the fewest triangles off."""
     best = None
-    for balcony_rows in (2, 3, 5, 7):
-        for stall_rows in range(3, 23):
-            for k in range(1, 40):
-                for bays in (8, 16, 32, 48):
-                    # Triangles per seat: cushion 10, backrest 6k + 4, arms 20.
-                    per_seat = 34 + 6 * k
-                    seats = (stall_rows + balcony_rows) * int((W - 3) / SEAT_W)
-                    est = seats * per_seat + 4 * (4 * 12 + (bays + 1) * 48) + 40 + 4 * (
-                        stall_rows + balcony_rows)
-                    err = abs(est - target)
-                    key = (err, -stall_rows, k, bays, balcony_rows)
-                    if best is None or key < best[0]:
-                        best = (key, k, stall_rows, balcony_rows, bays)
+    for per_row in (8, 12, 16, 24, 32, 41):
+        for balcony_rows in (2, 3, 5, 7):
+            for stall_rows in range(3, 23):
+                for k in range(1, 40):
+                    for bays in (2, 4, 8, 16, 32, 48):
+                        # Triangles per seat: cushion 10, backrest 6k + 4, arms 20.
+                        seats = (stall_rows + balcony_rows) * per_row
+                        est = (seats * (34 + 6 * k) + 4 * (48 + 48 * (bays + 1)) + 40 +
+                               4 * (stall_rows + balcony_rows))
+                        off = abs(est - target)
+                        key = (0 if off <= 0.02 * target else off, -seats, k, bays, off,
+                               -per_row, balcony_rows)
+                        if best is None or key < best[0]:
+                            best = (key, per_row, k, stall_rows, balcony_rows, bays)
     return best[1:]
 
 
@@ -294,10 +298,10 @@ def main():
     args = ap.parse_args()
     if not 1 <= args.luminaires <= 56:
         ap.error("--luminaires: 1..56")
-    if args.triangles < 3000:
-        ap.error("--triangles: at least 3000 (the hall and trusses alone are about 2000)")
-    k, stall_rows, balcony_rows, bays = choose(args.triangles)
-    obj, seats = build(args.triangles, k, stall_rows, balcony_rows, bays)
+    if args.triangles < 2000:
+        ap.error("--triangles: at least 2000 (the hall, trusses and a few seats)")
+    per_row, k, stall_rows, balcony_rows, bays = choose(args.triangles)
+    obj, seats = build(per_row, k, stall_rows, balcony_rows, bays)
     os.makedirs(os.path.join(args.out, "venue"), exist_ok=True)
     with open(os.path.join(args.out, "venue", "venue.mtl"), "w") as f:
         f.write(MTL)
@@ -317,7 +321,7 @@ def main():
         f.write(scene_text("venue/venue.obj", obj.triangles(), len(obj.faces), seats,
                            args.patch_size, args.luminaires))
     print(f"make-venue: {obj.triangles()} triangles, {len(obj.faces)} faces, {seats} seats "
-          f"(backrest facets {k}, {stall_rows} stall rows, {balcony_rows} balcony rows, "
+          f"({per_row} a row, backrest facets {k}, {stall_rows} stall rows, {balcony_rows} balcony rows, "
           f"{bays} truss bays), {args.luminaires} luminaires -> {args.out}/venue.toml")
 
 
