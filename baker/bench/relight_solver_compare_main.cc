@@ -123,7 +123,7 @@ void PrintSurfaceTable(const BakerCore& dense, const BakerCore& hier,
 }
 
 int Run(const std::string& path, double patch_size_m, double epsilon, double tolerance,
-        int threads) {
+        int threads, bool adaptive_visibility) {
   Scene scene = LoadScene(path);
   if (patch_size_m > 0) scene.patch_size_m = patch_size_m;
   BakeOptions dense_options;
@@ -132,6 +132,7 @@ int Run(const std::string& path, double patch_size_m, double epsilon, double tol
   BakeOptions hier_options = dense_options;
   hier_options.solver = SolverKind::kHierarchical;
   hier_options.link_epsilon = epsilon;
+  hier_options.adaptive_visibility = adaptive_visibility;
   if (tolerance > 0) hier_options.solve_tolerance = tolerance;
 
   auto t = Clock::now();
@@ -204,9 +205,12 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--threads", threads, "worker threads (0 = all cores)")
       ->check(CLI::Range(0, 1024));
+  bool adaptive_visibility = false;
+  app.add_flag("--adaptive-visibility", adaptive_visibility,
+               "256 visibility rays where a node pair's 16 disagree");
   CLI11_PARSE(app, argc, argv);
   try {
-    return Run(scene, patch_size_m, epsilon, tolerance, threads);
+    return Run(scene, patch_size_m, epsilon, tolerance, threads, adaptive_visibility);
   } catch (const SceneError& e) {
     std::fprintf(stderr, "relight-solver-compare: error: %s\n", e.what());
     return 2;

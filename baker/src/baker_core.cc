@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
+#include <type_traits>
 
 #include "hierarchy.h"
 #include "hierarchy_links.h"
 #include "link_brightness.h"
 #include "parallel_for.h"
 #include "relight/base/sh_index.h"
+#include "relight/baker/work_share.h"
 
 namespace relight::baker {
 namespace {
@@ -61,6 +64,22 @@ void BuildDenseSolver(BakerCore* core, Progress* progress) {
   core->report.solve_seconds += solve_time.seconds();
 }
 
+// Every process's links, from each process's share of the root pairs
+// (work_share.h), in the order RefineLinks gives them: sorted by (p, q).
+std::vector<HierarchyLink> ShareLinks(const WorkShare& share,
+                                      const std::vector<HierarchyLink>& mine) {
+  static_assert(std::is_trivially_copyable_v<HierarchyLink>);
+  std::vector<uint8_t> bytes(mine.size() * sizeof(HierarchyLink));
+  if (!mine.empty()) std::memcpy(bytes.data(), mine.data(), bytes.size());
+  const std::vector<uint8_t> all = share.AllGather(bytes);
+  std::vector<HierarchyLink> links(all.size() / sizeof(HierarchyLink));
+  if (!links.empty()) std::memcpy(links.data(), all.data(), links.size() * sizeof(HierarchyLink));
+  std::sort(links.begin(), links.end(), [](const HierarchyLink& x, const HierarchyLink& y) {
+    return x.p != y.p ? x.p < y.p : x.q < y.q;
+  });
+  return links;
+}
+
 void BuildHierarchicalSolver(BakerCore* core, Progress* progress) {
   const Mesh& mesh = core->mesh;
   const BakeOptions& o = core->options;
@@ -81,9 +100,11 @@ void BuildHierarchicalSolver(BakerCore* core, Progress* progress) {
     flux += root.area_m2 * brightness[h.root(s)];
   }
   const double epsilon = o.link_epsilon * flux / area;
+  const int rank = o.share ? o.share->rank() : 0, ranks = o.share ? o.share->ranks() : 1;
   std::vector<HierarchyLink> links =
-      RefineLinks(mesh, *core->visibility, core->samples, h, brightness, epsilon, o.threads,
-                  progress);
+      RefineLinks(mesh, *core->visibility, core->samples, h, brightness, epsilon,
+                  o.adaptive_visibility, o.threads, progress, rank, ranks);
+  if (ranks > 1) links = ShareLinks(*o.share, links);
   core->report.nodes = h.nodes.size();
   core->report.links = links.size();
   core->report.form_factor_seconds += ff_time.seconds();

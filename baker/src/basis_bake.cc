@@ -151,6 +151,10 @@ Baker::Baker(const Scene& scene, const BakeOptions& options)
 Baker::~Baker() = default;
 
 relight::Bake Baker::Bake() {
+  return BakePart([](size_t) { return true; }, true);
+}
+
+relight::Bake Baker::BakePart(const std::function<bool(size_t)>& mine, bool whole) {
   const Stopwatch total;
   const BakerCore& core = *impl_->core;
   const Scene& scene = core.scene;
@@ -164,10 +168,11 @@ relight::Bake Baker::Bake() {
   size_t terms = 0;
   // Progress in SH terms: a solve's time grows with its terms.
   size_t all_terms = 0;
-  for (const Luminaire& l : scene.luminaires)
-    all_terms += static_cast<size_t>(ShTermCount(l.sh_degree));
+  for (size_t l = 0; l < scene.luminaires.size(); ++l)
+    if (mine(l)) all_terms += static_cast<size_t>(ShTermCount(scene.luminaires[l].sh_degree));
   impl_->progress.Begin("basis luminances", all_terms);
   for (size_t l = 0; l < scene.luminaires.size(); ++l) {
+    if (!mine(l)) continue;
     const LuminaireBasis basis = ComputeLuminaireBasis(core, l, EffectiveDirectMode(core));
     bake.luminaires.push_back(
         MakeBakeLuminaire(scene.luminaires[l], basis, core.options.lid_samples));
@@ -181,7 +186,7 @@ relight::Bake Baker::Bake() {
   double white = scene.white_cd_m2;
   // Without luminaires there is no light to set a white by (and the
   // reference would solve with zero right-hand sides): the default white.
-  if (!(white > 0) && !scene.luminaires.empty()) {
+  if (whole && !(white > 0) && !scene.luminaires.empty()) {
     const ReferenceResult ref = ComputeReference(core, DefaultSettings());
     std::vector<double> y;
     for (const Rgb& rgb : ref.vertex_luminance) y.push_back(Photometric(rgb));
@@ -201,7 +206,7 @@ relight::Bake Baker::Bake() {
   if (core.hierarchical_solver) {
     impl_->report.sweeps = core.hierarchical_solver->max_sweeps_used();
     impl_->report.residual = core.hierarchical_solver->max_residual();
-    if (core.options.store_hierarchy) {
+    if (whole && core.options.store_hierarchy) {
       bake.hierarchy = MakeBakeHierarchy(core.mesh, core.hierarchical_solver->hierarchy(),
                                          core.hierarchical_solver->links());
     }
@@ -231,5 +236,7 @@ std::vector<FixtureSetting> Baker::DefaultSettings() const {
 }
 
 const BakeReport& Baker::report() const { return impl_->report; }
+
+const Scene& Baker::scene() const { return impl_->core->scene; }
 
 }  // namespace relight::baker

@@ -98,14 +98,15 @@ class Refiner {
  public:
   Refiner(const Mesh& mesh, const Visibility& vis, const PatchSampleSets& patch_samples,
           const Hierarchy& h, const NodeSamples& samples, const std::vector<double>& brightness,
-          double epsilon)
+          double epsilon, bool adaptive)
       : mesh_(mesh),
         vis_(vis),
         patch_samples_(patch_samples),
         h_(h),
         samples_(samples),
         brightness_(brightness),
-        epsilon_(epsilon) {}
+        epsilon_(epsilon),
+        adaptive_(adaptive) {}
 
   void Refine(uint32_t p, uint32_t q, std::vector<HierarchyLink>* out) const {
     const HierarchyNode& np = h_.nodes[p];
@@ -132,7 +133,7 @@ class Refiner {
     bool split = in_view > epsilon_ || p_straddles || q_straddles;
     double v = 1;
     if (!split) {
-      v = NodeVisibleFraction(h_, samples_, vis_, p, q);
+      v = NodeVisibleFraction(h_, samples_, vis_, p, q, adaptive_);
       split = v < 1 && std::max(f.f_pq * brightness_[q], f.f_qp * brightness_[p]) > epsilon_;
     }
     if (split) {
@@ -164,6 +165,7 @@ class Refiner {
   const NodeSamples& samples_;
   const std::vector<double>& brightness_;
   double epsilon_;
+  bool adaptive_;
 };
 
 }  // namespace
@@ -184,7 +186,7 @@ NodePairFactors UnoccludedNodeFactors(const Hierarchy& h, const NodeSamples& sam
 }
 
 double NodeVisibleFraction(const Hierarchy& h, const NodeSamples& samples, const Visibility& vis,
-                           uint32_t p, uint32_t q) {
+                           uint32_t p, uint32_t q, bool adaptive) {
   const HierarchyNode& np = h.nodes[p];
   const HierarchyNode& nq = h.nodes[q];
   // Always the fine points (16 rays): a hidden corner of a big node must
@@ -199,15 +201,32 @@ double NodeVisibleFraction(const Hierarchy& h, const NodeSamples& samples, const
     ++valid;
     if (vis.Visible(vis.Offset(x, np.normal), vis.Offset(y, nq.normal))) ++visible;
   }
-  return valid == 0 ? 1.0 : static_cast<double>(visible) / valid;
+  if (valid == 0) return 1.0;
+  if (!adaptive || visible == 0 || visible == valid) return static_cast<double>(visible) / valid;
+  // The 16 rays disagree: the pair is partly hidden and 16 rays give its
+  // visibility only to about +-1/8. Every point of p against every point of
+  // q (256 rays, weighted by the points' quadrature weights) pins it down.
+  double seen = 0, total = 0;
+  for (const PatchSample& a : sp) {
+    if (Height(nq, a.point) <= 0) continue;
+    const Vec3 x = vis.Offset(a.point, np.normal);
+    for (const PatchSample& b : sq) {
+      if (Height(np, b.point) <= 0) continue;
+      const double w = a.weight * b.weight;
+      total += w;
+      if (vis.Visible(x, vis.Offset(b.point, nq.normal))) seen += w;
+    }
+  }
+  return total > 0 ? seen / total : static_cast<double>(visible) / valid;
 }
 
 std::vector<HierarchyLink> RefineLinks(const Mesh& mesh, const Visibility& vis,
                                        const PatchSampleSets& patch_samples, const Hierarchy& h,
                                        const std::vector<double>& brightness, double epsilon,
-                                       int threads, Progress* progress) {
+                                       bool adaptive, int threads, Progress* progress,
+                                       int share_rank, int share_ranks) {
   const NodeSamples samples(h, patch_samples);
-  const Refiner refiner(mesh, vis, patch_samples, h, samples, brightness, epsilon);
+  const Refiner refiner(mesh, vis, patch_samples, h, samples, brightness, epsilon, adaptive);
 
   // Every pair of surfaces that can face each other; the biggest first, so
   // the workers finish together.
@@ -226,7 +245,19 @@ std::vector<HierarchyLink> RefineLinks(const Mesh& mesh, const Visibility& vis,
     }
   }
   std::sort(pairs.begin(), pairs.end(),
-            [](const RootPair& x, const RootPair& y) { return x.weight > y.weight; });
+            [](const RootPair& x, const RootPair& y) {
+              return x.weight != y.weight ? x.weight > y.weight
+                                          : (x.p != y.p ? x.p < y.p : x.q < y.q);
+            });
+  // A distributed bake's share: dealt round the ranks by size, so each gets
+  // big and small pairs alike.
+  if (share_ranks > 1) {
+    size_t kept = 0;
+    for (size_t k = 0; k < pairs.size(); ++k)
+      if (static_cast<int>(k % static_cast<size_t>(share_ranks)) == share_rank)
+        pairs[kept++] = pairs[k];
+    pairs.resize(kept);
+  }
   // Progress in units of the pairs' area products (a rough measure of their work).
   double total_weight = 0;
   for (const RootPair& r : pairs) total_weight += r.weight;

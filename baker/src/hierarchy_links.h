@@ -53,16 +53,23 @@ struct NodePairFactors {
 };
 NodePairFactors UnoccludedNodeFactors(const Hierarchy& h, const NodeSamples& samples, uint32_t p,
                                       uint32_t q);
-// Fraction of rays between the two nodes' points that Embree finds unblocked.
+// Fraction of rays between the two nodes' points that Embree finds unblocked:
+// 16 paired rays; with `adaptive`, where those disagree, all 16 x 16 pairs.
 double NodeVisibleFraction(const Hierarchy& h, const NodeSamples& samples, const Visibility& vis,
-                           uint32_t p, uint32_t q);
+                           uint32_t p, uint32_t q, bool adaptive = false);
 
+// adaptive_visibility: 256 rays for the pairs whose 16 disagree (measured
+// in docs/hierarchy.md: it barely moves the living room's errors and
+// costs about 3x the link time, so it is off by default).
+// share_rank / share_ranks: refine only every share_ranks-th root pair
+// (by size), from share_rank on; the shares' links together are all of them.
 // brightness: per node, an estimate of its exitance (any unit; only F times
 // it is compared with epsilon, in the same unit). Deterministic: links come
 // out sorted by (p, q) whatever the thread count.
 std::vector<HierarchyLink> RefineLinks(const Mesh& mesh, const Visibility& vis,
                                        const PatchSampleSets& patch_samples, const Hierarchy& h,
                                        const std::vector<double>& brightness, double epsilon,
-                                       int threads, Progress* progress);
+                                       bool adaptive_visibility, int threads, Progress* progress,
+                                       int share_rank = 0, int share_ranks = 1);
 
 }  // namespace relight::baker

@@ -10,17 +10,20 @@
 #include <sys/resource.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <exception>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "relight/bake/bake.h"
 #include "relight/baker/baker.h"
+#include "relight/baker/distributed.h"
 #include "relight/baker/lid_error.h"
 #include "relight/baker/scene.h"
 #include "mesher.h"
@@ -244,7 +247,7 @@ void PrintSummary(const Scene& scene, const relight::baker::BakeReport& r,
       r.solve_seconds, r.total_seconds, PeakMegabytes(), wrote.c_str());
 }
 
-int Run(const Args& args) {
+int Run(const Args& args, const relight::baker::DistributedSession& mpi) {
   if (!args.reference && !args.sets.empty()) {
     return Fail("--set applies to --reference only (a bake takes the scene's defaults)",
                 kExitBadInput);
@@ -260,10 +263,18 @@ int Run(const Args& args) {
   options.link_epsilon = args.link_epsilon;
   options.store_hierarchy = !args.no_hierarchy;
   options.lid_samples = args.lid_samples;
-  options.progress = !args.quiet;
+  options.progress = !args.quiet && mpi.writer();
+  // The links' refinement split over the ranks (a reference: rank 0 alone).
+  options.share = args.reference ? nullptr : &mpi;
+  // Ranks sharing a machine share its cores (docs/distributed-bake.md).
+  if (options.threads == 0 && mpi.local_ranks() > 1) {
+    options.threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()) /
+                                      mpi.local_ranks());
+  }
   if (args.lid_error_percent > 0) {
     const auto mode = options.direct_mode.value_or(relight::baker::DirectModeKind::kExact);
     for (const auto& d : relight::baker::ApplyLidErrorTarget(&scene, args.lid_error_percent / 100, mode)) {
+      if (!mpi.writer()) continue;  // every rank sets the degrees; one says so
       std::printf("relight-bake: %s: SH degree %d (was %d), %s LID error %.2f%% (window %s)%s\n",
                   d.name.c_str(), d.choice.degree, d.old_degree,
                   relight::baker::LidErrorMeasureName(d.measure), 100 * d.choice.error,
@@ -279,9 +290,9 @@ int Run(const Args& args) {
       // The solver's form factors and links are freed before the file is
       // written: the stored hierarchy's encoding then takes their place.
       Baker baker(scene, options);
-      bake = baker.Bake();
-      report = baker.report();
+      bake = relight::baker::DistributedBake(&baker, mpi, &report);
     }
+    if (!mpi.writer()) return 0;  // rank 0 writes the whole bake
     std::vector<relight::BakeSectionSize> sections;
     if (relight::Status st = relight::WriteBake(bake, args.out_path, &sections); !st.ok()) {
       return Fail(args.out_path + ": " + st.ToString(), kExitIo);
@@ -294,6 +305,8 @@ int Run(const Args& args) {
     return 0;
   }
 
+  // A reference is one solve: rank 0 alone computes and writes it.
+  if (!mpi.writer()) return 0;
   // Settings first: a typo in --set fails before minutes of form factors.
   std::vector<FixtureSetting> settings;
   for (const auto& l : scene.luminaires)
@@ -380,13 +393,21 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return Fail(e.what(), kExitBadInput);
   }
+  relight::baker::DistributedSession mpi(&argc, &argv);
+  if (mpi.idle()) return 0;
+  // A failure on one rank ends them all, or the others would wait for it.
+  const auto fail = [&mpi](const std::string& message, int code) {
+    Fail(message, code);
+    mpi.Abort(code);
+    return code;
+  };
   try {
-    return Run(args);
+    return Run(args, mpi);
   } catch (const relight::baker::SceneError& e) {
-    return Fail(e.what(), kExitBadInput);
+    return fail(e.what(), kExitBadInput);
   } catch (const std::bad_alloc&) {
-    return Fail("out of memory (raise patch_size to use fewer patches)", kExitIo);
+    return fail("out of memory (raise patch_size to use fewer patches)", kExitIo);
   } catch (const std::exception& e) {
-    return Fail(e.what(), kExitIo);
+    return fail(e.what(), kExitIo);
   }
 }

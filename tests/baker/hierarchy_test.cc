@@ -174,14 +174,47 @@ TEST(HierarchyLinks, DeterministicWhateverTheThreadCount) {
   const PatchSampleSets samples = BuildPatchSampleSets(mesh);
   const Hierarchy h = BuildHierarchy(mesh);
   const std::vector<double> brightness(h.nodes.size(), 1.0);
-  const auto one = RefineLinks(mesh, vis, samples, h, brightness, 2e-3, 1, nullptr);
-  const auto two = RefineLinks(mesh, vis, samples, h, brightness, 2e-3, 2, nullptr);
+  const auto one = RefineLinks(mesh, vis, samples, h, brightness, 2e-3, false, 1, nullptr);
+  const auto two = RefineLinks(mesh, vis, samples, h, brightness, 2e-3, false, 2, nullptr);
   ASSERT_EQ(one.size(), two.size());
   for (size_t k = 0; k < one.size(); ++k) {
     EXPECT_EQ(one[k].p, two[k].p);
     EXPECT_EQ(one[k].q, two[k].q);
     EXPECT_EQ(one[k].f_pq, two[k].f_pq);
     EXPECT_EQ(one[k].g_qp, two[k].g_qp);
+  }
+}
+
+// Issue 16: a distributed bake refines each rank's share of the surface
+// pairs; the shares together are exactly the one-process links (none lost,
+// none twice, the same factors).
+TEST(HierarchyLinks, SharesOverRanksAddUpToTheWhole) {
+  const Scene scene = Room(0.25);
+  const Mesh mesh = BuildMesh(scene);
+  const Visibility vis(mesh, 1);
+  const PatchSampleSets samples = BuildPatchSampleSets(mesh);
+  const Hierarchy h = BuildHierarchy(mesh);
+  const std::vector<double> brightness(h.nodes.size(), 1.0);
+  const auto whole = RefineLinks(mesh, vis, samples, h, brightness, 2e-3, false, 2, nullptr);
+  std::vector<HierarchyLink> shares;
+  size_t smallest = whole.size();
+  for (int rank = 0; rank < 3; ++rank) {
+    const auto part =
+        RefineLinks(mesh, vis, samples, h, brightness, 2e-3, false, 2, nullptr, rank, 3);
+    smallest = std::min(smallest, part.size());
+    shares.insert(shares.end(), part.begin(), part.end());
+  }
+  EXPECT_GT(smallest, 0u);  // every rank got work
+  std::sort(shares.begin(), shares.end(), [](const HierarchyLink& x, const HierarchyLink& y) {
+    return x.p != y.p ? x.p < y.p : x.q < y.q;
+  });
+  ASSERT_EQ(shares.size(), whole.size());
+  for (size_t k = 0; k < whole.size(); ++k) {
+    EXPECT_EQ(shares[k].p, whole[k].p);
+    EXPECT_EQ(shares[k].q, whole[k].q);
+    EXPECT_EQ(shares[k].f_pq, whole[k].f_pq);
+    EXPECT_EQ(shares[k].f_qp, whole[k].f_qp);
+    EXPECT_EQ(shares[k].g_pq, whole[k].g_pq);
   }
 }
 

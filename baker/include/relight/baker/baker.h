@@ -29,6 +29,8 @@ namespace relight::baker {
 enum class SolverKind { kAuto, kDense, kHierarchical };
 constexpr size_t kAutoDenseMaxPatches = 4000;
 
+class WorkShare;  // relight/baker/work_share.h
+
 struct BakeOptions {
   std::optional<DirectModeKind> direct_mode;  // overrides every luminaire's mode when set
   int threads = 0;                            // 0 = all cores
@@ -39,6 +41,11 @@ struct BakeOptions {
   // exitance exceeds this fraction of the brightest exitance (BF refinement);
   // 0 links every pair of patches (the dense solver's form factors).
   double link_epsilon = 1e-3;
+  // Hierarchical: 256 visibility rays (not 16) for node pairs whose 16 rays disagree.
+  bool adaptive_visibility = false;
+  // Distributed bake: this process refines its share of the links and swaps
+  // them with the others (relight/baker/work_share.h). Null: all of them here.
+  const WorkShare* share = nullptr;
   // Hierarchical: sweeps stop when the residual |S + rho K M - M| of each
   // right-hand side is at most this x (1 - largest reflectance) of its peak
   // exitance, so the exitance's error is at most this fraction of the peak
@@ -93,6 +100,11 @@ class Baker {
   // the degree its narrowest angle needs, report().zoom_degrees), quantised
   // into the runtime's format.
   relight::Bake Bake();
+  // Part of a bake split over processes (relight/baker/distributed.h): only
+  // the luminaires `mine` accepts, in scene order; `whole` adds what the
+  // writing process alone needs (the display white, the stored hierarchy).
+  // Bake() is BakePart(every luminaire, true).
+  relight::Bake BakePart(const std::function<bool(size_t)>& mine, bool whole);
   // The scene lit by the exact distributions at `settings` (one per luminaire,
   // in scene order), float64, no basis.
   ReferenceResult Reference(const std::vector<FixtureSetting>& settings);
@@ -100,6 +112,8 @@ class Baker {
   std::vector<FixtureSetting> DefaultSettings() const;
 
   const BakeReport& report() const;
+  // The scene as baked (zooming beams carry the SH degree chosen for them).
+  const Scene& scene() const;
 
  private:
   struct Impl;
