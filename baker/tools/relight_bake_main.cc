@@ -72,6 +72,12 @@ struct Args {
   bool quiet = false;
   bool reference = false;
   bool no_hierarchy = false;
+  // Clustered-PCA compression of the bases: the largest error, percent of
+  // each luminaire's own SH peak at random looks (docs/performance.md,
+  // "Compressed bases"); 0 or --no-compress stores them uncompressed.
+  double compress_error_percent = 2.0;
+  bool no_compress = false;
+  std::string compress_curve_path;  // CSV of every candidate weighed, for the docs' plot
   std::vector<std::string> sets;
 };
 
@@ -227,6 +233,21 @@ void PrintSummary(const Scene& scene, const relight::baker::BakeReport& r,
       r.solve_seconds, r.total_seconds, PeakMegabytes(), wrote.c_str());
 }
 
+// "relight-bake: bases: 21.4x vs float32, max 0.62 % / mean 0.04 % of peak (...)".
+void PrintCompression(const relight::baker::BakeReport& r) {
+  if (r.basis_bytes == 0) return;
+  std::printf("relight-bake: bases: %.1fx vs float32 (%.2f MB in memory)",
+              static_cast<double>(r.basis_float32_bytes) / static_cast<double>(r.basis_bytes),
+              static_cast<double>(r.basis_bytes) / (1024.0 * 1024.0));
+  if (r.bases_compressed > 0) {
+    std::printf(", max %.2f %% / mean %.3f %% of peak (%zu of %zu bases compressed)",
+                100 * r.compress_max_error, 100 * r.compress_mean_error, r.bases_compressed, r.bases);
+  } else {
+    std::printf(", uncompressed");
+  }
+  std::printf("\n");
+}
+
 int Run(const Args& args) {
   if (!args.reference && !args.sets.empty()) {
     return Fail("--set applies to --reference only (a bake takes the scene's defaults)",
@@ -244,6 +265,7 @@ int Run(const Args& args) {
   options.store_hierarchy = !args.no_hierarchy;
   options.lid_samples = args.lid_samples;
   options.progress = !args.quiet;
+  options.compress_error = args.no_compress ? 0 : args.compress_error_percent / 100;
   if (args.lid_error_percent > 0) {
     const auto mode = options.direct_mode.value_or(relight::baker::DirectModeKind::kExact);
     for (const auto& d : relight::baker::ApplyLidErrorTarget(&scene, args.lid_error_percent / 100, mode)) {
@@ -269,11 +291,26 @@ int Run(const Args& args) {
     if (relight::Status st = relight::WriteBake(bake, args.out_path, &sections); !st.ok()) {
       return Fail(args.out_path + ": " + st.ToString(), kExitIo);
     }
+    if (!args.compress_curve_path.empty()) {
+      std::string csv = "luminaire,set,cluster_size,clusters,components,max_error,mean_error,bytes\n";
+      for (const relight::baker::CompressionPoint& p : report.compress_curve) {
+        char line[256];
+        std::snprintf(line, sizeof line, "%zu,%zu,%u,%u,%u,%.9g,%.9g,%llu\n", p.luminaire, p.set,
+                      p.cluster_size, p.clusters, p.components, p.max_error, p.mean_error,
+                      static_cast<unsigned long long>(p.bytes));
+        csv += line;
+      }
+      std::string error;
+      if (!WriteFileAtomic(args.compress_curve_path, csv, &error)) return Fail(error, kExitIo);
+    }
     char wrote[512];
     std::snprintf(wrote, sizeof wrote, "%zu SH terms; wrote %s (%.2f MB%s)", report.sh_terms,
                   args.out_path.c_str(), FileMegabytes(args.out_path),
                   HierarchySummary(sections).c_str());
-    if (!args.quiet) PrintSummary(scene, report, wrote);
+    if (!args.quiet) {
+      PrintSummary(scene, report, wrote);
+      PrintCompression(report);
+    }
     return 0;
   }
 
@@ -348,6 +385,16 @@ int main(int argc, char** argv) {
   app.add_flag("--no-hierarchy", args.no_hierarchy,
                "hierarchical solver: leave its quadtrees and links out of the bake (a smaller "
                "file; only run-time light sources on surfaces need them)");
+  app.add_option("--compress-error", args.compress_error_percent,
+                 "compress each luminaire's basis (clustered PCA) to the smallest form whose error "
+                 "stays within this percent of the peak of its own SH light at random looks; "
+                 "0 stores the bases uncompressed")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  app.add_option("--compress-curve", args.compress_curve_path,
+                 "write every compression candidate weighed (cluster length, components, error, "
+                 "bytes) to this CSV file");
+  app.add_flag("--no-compress", args.no_compress, "store the bases uncompressed (as --compress-error 0)");
   app.add_flag("-q,--quiet", args.quiet, "no progress bar and no summary");
   app.add_flag("--reference", args.reference,
                "solve with the exact distributions and write CSV instead of a bake");

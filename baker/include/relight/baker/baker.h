@@ -47,6 +47,20 @@ struct BakeOptions {
   // Hierarchical: store the quadtrees and links in the bake (sections HIER
   // and LINK) for light sources placed on surfaces at run time.
   bool store_hierarchy = true;
+  // Clustered-PCA compression of the bases (compress_basis.h): the largest
+  // error allowed, a fraction of the peak of each luminaire's own SH light
+  // at random looks; 0 stores the bases uncompressed.
+  double compress_error = 0;
+};
+
+// One rate-error point of the basis compression: a cluster length and
+// component count, its error (unquantised, fractions of peak as
+// BakeOptions::compress_error) and its bytes in memory.
+struct CompressionPoint {
+  size_t luminaire = 0, set = 0;
+  uint32_t cluster_size = 0, clusters = 0, components = 0;
+  double max_error = 0, mean_error = 0;
+  uint64_t bytes = 0;
 };
 
 struct BakeReport {
@@ -59,6 +73,14 @@ struct BakeReport {
   double residual = 0;  // hierarchical: largest residual a solve stopped at, of its peak exitance
   // Zooming beams without a scene sh_degree: the degree their narrowest angle got.
   std::vector<LuminaireDegree> zoom_degrees;
+  // Bases in memory (compressed or int16) against the same values as float32,
+  // and the compression's largest and mean error (fractions of peak, as
+  // BakeOptions::compress_error) over the compressed ones.
+  uint64_t basis_bytes = 0, basis_float32_bytes = 0;
+  size_t bases_compressed = 0, bases = 0;
+  double compress_max_error = 0, compress_mean_error = 0;
+  // Every candidate the compression weighed (the docs' rate-error curve).
+  std::vector<CompressionPoint> compress_curve;
 };
 
 // One fixture's state for a reference solve (same meaning as the runtime's).
