@@ -3,6 +3,7 @@
 #include "compressed_recombine.h"
 
 #include <cstddef>
+#include <cstdint>
 
 #include "compressed_recombine_avx2.h"
 #include "recombine.h"
@@ -16,10 +17,24 @@ namespace {
 constexpr int32_t kMeanLimit = (int32_t{1} << 30) - 1;
 constexpr int kMaxClusterShift = 31;
 
-// round(a 2^s / kCompressedWeightOne) for a >= 0, halves up; a < 2^31, s <= 31: < 2^62.
+constexpr int kMinClusterShift = -31;
+
+// round(a 2^s / kCompressedWeightOne) for 0 <= a <= 2^31, halves up; for
+// s >= 0 a 2^s <= 2^62, for s < 0 the divisor 16383 2^-s < 2^45: no overflow.
 int64_t ScaledMagnitude(int64_t a, int s) {
-  const int64_t num = a << s;
-  return (num + kCompressedWeightOne / 2) / kCompressedWeightOne;
+  if (s >= 0) return ((a << s) + kCompressedWeightOne / 2) / kCompressedWeightOne;
+  const int64_t d = int64_t{kCompressedWeightOne} << -s;
+  return (a + d / 2) / d;
+}
+
+// mean + the rounded shifted sum, as the header defines it for any shift.
+inline int32_t Finish(int32_t mean, int32_t acc, int s) {
+  if (s >= 0) {
+    const int32_t half = s > 0 ? int32_t{1} << (s - 1) : 0;
+    return mean + ((acc + half) >> s);
+  }
+  const int64_t v = int64_t{mean} + int64_t{acc} * (int64_t{1} << -s);  // |v| < 2^62
+  return v > INT32_MAX ? INT32_MAX : (v < INT32_MIN ? INT32_MIN : static_cast<int32_t>(v));
 }
 
 }  // namespace
@@ -42,12 +57,12 @@ void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, Clust
       if (a > largest) largest = a;
     }
     int s = kMaxClusterShift;
-    while (s > 0 && ScaledMagnitude(largest, s) > limit) --s;
+    while (s > kMinClusterShift && ScaledMagnitude(largest, s) > limit) --s;
     m->shift[ch] = s;
     for (uint32_t j = 0; j < components; ++j) {
       const int64_t p = projection[(1 + j) * 3 + ch];
       int64_t k = ScaledMagnitude(p < 0 ? -p : p, s);
-      if (k > limit) k = limit;  // only at s = 0: saturated (see the header)
+      if (k > limit) k = limit;  // never for |P| < 2^31 at s = -31; kept as a guard
       m->k[ch * components + j] = static_cast<int16_t>(p < 0 ? -k : k);
     }
   }
@@ -55,14 +70,17 @@ void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, Clust
 
 void CompressedClusterScalarQ12(const int16_t* w, uint32_t n, uint32_t components,
                                 const ClusterMultipliers& m, int32_t* out) {
+  CompressedClusterTailQ12(w, 0, n, components, m, out);
+}
+
+void CompressedClusterTailQ12(const int16_t* w, uint32_t from, uint32_t n, uint32_t components,
+                              const ClusterMultipliers& m, int32_t* out) {
   for (int ch = 0; ch < 3; ++ch) {
     const int16_t* k = m.k + ch * components;
-    const int s = m.shift[ch];
-    const int32_t half = s > 0 ? int32_t{1} << (s - 1) : 0;
-    for (uint32_t i = 0; i < n; ++i) {
+    for (uint32_t i = from; i < n; ++i) {
       int32_t acc = 0;  // exact: |acc| < 2^30 (see the header)
       for (uint32_t j = 0; j < components; ++j) acc += int32_t{w[size_t{j} * n + i]} * k[j];
-      out[size_t{i} * 3 + ch] = m.mean[ch] + ((acc + half) >> s);
+      out[size_t{i} * 3 + ch] = Finish(m.mean[ch], acc, m.shift[ch]);
     }
   }
 }
@@ -70,22 +88,13 @@ void CompressedClusterScalarQ12(const int16_t* w, uint32_t n, uint32_t component
 void CompressedClusterQ12(const int16_t* w, uint32_t n, uint32_t components,
                           const ClusterMultipliers& m, int32_t* out) {
   uint32_t done = 0;
-  if (CpuHasAvx2() && n >= 16) {
+  // Negative shifts (saturating left shifts) are rare: the scalar path takes them.
+  if (CpuHasAvx2() && n >= 16 && m.shift[0] >= 0 && m.shift[1] >= 0 && m.shift[2] >= 0) {
     done = n - n % 16;
     CompressedClusterAvx2Q12(w, n, components, m, out);
   }
-  if (done == n) return;
   // The tail: same integers on the scalar path, weights still at stride n.
-  for (int ch = 0; ch < 3; ++ch) {
-    const int16_t* k = m.k + ch * components;
-    const int s = m.shift[ch];
-    const int32_t half = s > 0 ? int32_t{1} << (s - 1) : 0;
-    for (uint32_t i = done; i < n; ++i) {
-      int32_t acc = 0;
-      for (uint32_t j = 0; j < components; ++j) acc += int32_t{w[size_t{j} * n + i]} * k[j];
-      out[size_t{i} * 3 + ch] = m.mean[ch] + ((acc + half) >> s);
-    }
-  }
+  if (done < n) CompressedClusterTailQ12(w, done, n, components, m, out);
 }
 
 uint64_t CompressedProjectionValues(const BakeCompressedBasis& cpca) {

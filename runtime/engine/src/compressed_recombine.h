@@ -19,7 +19,7 @@
 namespace relight {
 
 // One cluster's multipliers for one look: k[ch * r + j] (int16), mean[ch]
-// (LightQ12, clamped to +-(2^30 - 1)), shift[ch] in [0, 31].
+// (LightQ12, clamped to +-(2^30 - 1)), shift[ch] in [-31, 31].
 struct ClusterMultipliers {
   int16_t k[3 * kMaxCompressedComponents];
   int32_t mean[3];
@@ -34,25 +34,32 @@ int32_t CompressedMultiplierLimit(uint32_t components);
 // mean, then component j at (1 + j) * 3 + ch; LightQ12 for a weight of 1,
 // i.e. q = kCompressedWeightOne):
 //   K_j = round(P_j 2^s / kCompressedWeightOne), halves away from zero, with
-//   s the largest in [0, 31] that keeps every |K_j| <= CompressedMultiplierLimit(r);
-//   if even s = 0 does not (a component worth over 2^12 cd/m^2 per weight
-//   step), K saturates there.
+//   s the largest in [-31, 31] that keeps every |K_j| <= CompressedMultiplierLimit(r).
+//   s < 0 only for a component worth more than about 2^30 / r LightQ12
+//   (16384 cd/m^2 at r = 16) at its largest weight: a bright beam in an
+//   all-in-SH basis; its receivers then take the scalar path.
 void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, ClusterMultipliers* m);
 
 // Receivers [0, n) of one cluster, weights component-major (w[j * n + i]):
 //   out[i * 3 + ch] = mean[ch] + ((sum_j w[j n + i] K[ch r + j] + half) >> shift[ch])
+// (for shift < 0: mean + sum x 2^-shift in int64, saturated to int32).
 // Scaling and overflow:
 //   w      int16 in [-kCompressedWeightOne, kCompressedWeightOne] (< 2^14; the bake checks it)
 //   K      int16, |K| <= CompressedMultiplierLimit(r)
 //   acc    int32, exact: |acc| <= r x 16383 x K_max < 2^30, so acc + half
 //          (half = 2^(s-1) <= 2^30) cannot overflow; the shift rounds halves up
-//   out    LightQ12: |mean| < 2^30 plus a shifted sum of at most 2^30 in
-//          magnitude: always inside int32, never saturates.
+//   out    LightQ12: for shift >= 0, |mean| < 2^30 plus a shifted sum of at
+//          most 2^30 in magnitude: inside int32, never saturates; for
+//          shift < 0 (|v| < 2^62 in int64) saturated to int32.
 // The scalar and the AVX2 paths (compressed_recombine_avx2.h) compute these
 // same integers: bit-identical.
 void CompressedClusterScalarQ12(const int16_t* w, uint32_t n, uint32_t components,
                                 const ClusterMultipliers& m, int32_t* out);
-// Same, on the AVX2 path when the CPU has it (recombine_avx2.h CpuHasAvx2).
+// Receivers [from, n) of the same cluster (n and the weights' stride as above).
+void CompressedClusterTailQ12(const int16_t* w, uint32_t from, uint32_t n, uint32_t components,
+                              const ClusterMultipliers& m, int32_t* out);
+// Same, on the AVX2 path when the CPU has it (recombine_avx2.h CpuHasAvx2)
+// and every shift is >= 0.
 void CompressedClusterQ12(const int16_t* w, uint32_t n, uint32_t components,
                           const ClusterMultipliers& m, int32_t* out);
 
