@@ -6,8 +6,7 @@
 #include "bake_hierarchy.h"
 #include "bake_lid.h"
 #include "baker_core.h"
-#include "compress_basis.h"
-#include "compression_looks.h"
+#include "compress_luminaire.h"
 #include "luminaire_basis.h"
 #include "quantise.h"
 #include "reference.h"
@@ -104,48 +103,6 @@ BakeLuminaire MakeBakeLuminaire(const Luminaire& lum, const LuminaireBasis& basi
   return out;
 }
 
-// Looks the compression error is measured at, per luminaire (compression_looks.h).
-constexpr int kCompressionLooks = 8;
-constexpr uint32_t kCompressionSeed = 13;
-
-// Compresses each receiver set's basis of `out` when options ask for it and
-// it pays (compress_basis.h), and counts the bases' memory into `report`.
-void CompressLuminaire(const Luminaire& lum, size_t index, const LuminaireBasis& basis,
-                       const BakeOptions& options, BakeLuminaire* out, BakeReport* report) {
-  std::vector<Eigen::VectorXd> looks;
-  if (options.compress_error > 0) {
-    looks = CompressionLooks(lum, basis.degree, kCompressionLooks, kCompressionSeed);
-  }
-  for (size_t s = 0; s < basis.sets.size(); ++s) {
-    const auto& b = basis.sets[s].basis;
-    BakeLightReceivers& rec = out->receivers[s];
-    report->basis_float32_bytes += 4 * 3 * static_cast<uint64_t>(b[0].rows() * b[0].cols());
-    ++report->bases;
-    if (looks.empty()) {
-      report->basis_bytes += 2 * rec.basis.size() + 8 * rec.basis_scale.size();
-      continue;
-    }
-    std::vector<CompressionPoint> curve;
-    const CompressionStats st =
-        CompressBasis(b, looks, options.compress_error, options.threads, &rec.compressed, &curve);
-    for (CompressionPoint& p : curve) {
-      p.luminaire = index;
-      p.set = s;
-      report->compress_curve.push_back(p);
-    }
-    report->basis_bytes += st.bytes;
-    if (!st.compressed) continue;
-    rec.basis.clear();
-    rec.basis.shrink_to_fit();
-    rec.basis_scale.clear();
-    ++report->bases_compressed;
-    report->compress_max_error = std::max(report->compress_max_error, st.max_error);
-    // Mean over compressed bases (each counted once).
-    report->compress_mean_error +=
-        (st.mean_error - report->compress_mean_error) / static_cast<double>(report->bases_compressed);
-  }
-}
-
 BakeCamera MakeBakeCamera(const Camera& camera) {
   BakeCamera out;
   PutQ16_16(camera.position, out.position);
@@ -215,8 +172,17 @@ relight::Bake Baker::Bake() {
     const LuminaireBasis basis = ComputeLuminaireBasis(core, l, EffectiveDirectMode(core));
     bake.luminaires.push_back(
         MakeBakeLuminaire(scene.luminaires[l], basis, core.options.lid_samples));
-    CompressLuminaire(scene.luminaires[l], l, basis, core.options, &bake.luminaires.back(),
-                      &impl_->report);
+    std::vector<ReceiverSetInput> sets(basis.sets.size());
+    for (size_t s = 0; s < sets.size(); ++s) {
+      sets[s].basis = &basis.sets[s].basis;
+      for (const DirectGeometry& d : basis.sets[s].direct) {
+        sets[s].direction.push_back(d.direction);
+        sets[s].g_m2.push_back(d.g_m2);
+      }
+      if (s == 0) sets[s].rho = &core.mesh.vertex_reflectance;
+    }
+    CompressLuminaireBases(scene.luminaires[l], l, basis.degree, sets, core.options,
+                           &bake.luminaires.back(), &impl_->report);
     terms += static_cast<size_t>(ShTermCount(basis.degree));
     impl_->progress.Advance(static_cast<size_t>(ShTermCount(basis.degree)));
   }

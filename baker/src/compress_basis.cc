@@ -37,12 +37,14 @@ MatrixXd LookMatrix(const std::vector<VectorXd>& looks, Index terms) {
   return k;
 }
 
-// Per look, the largest |value| of the uncompressed basis over receivers and channels.
-VectorXd LookPeaks(const MatrixXd& x, const MatrixXd& k) {
+// Per look, the largest |value| of the uncompressed basis plus the direct
+// light (if given) over receivers and channels.
+VectorXd LookPeaks(const MatrixXd& x, const MatrixXd& k, const std::vector<MatrixXd>& direct) {
   const Index t = k.rows();
   VectorXd peak = VectorXd::Zero(k.cols());
   for (int c = 0; c < 3; ++c) {
-    const MatrixXd v = x.middleCols(c * t, t) * k;
+    MatrixXd v = x.middleCols(c * t, t) * k;
+    for (size_t l = 0; l < direct.size(); ++l) v.col(static_cast<Index>(l)) += direct[l].col(c);
     peak = peak.cwiseMax(v.cwiseAbs().colwise().maxCoeff().transpose());
   }
   return peak;
@@ -144,11 +146,12 @@ void Quantise(const std::vector<ClusterPca>& pcas, uint32_t r, Index terms, Inde
 }  // namespace
 
 void MeasureCompressedError(const std::array<MatrixXd, 3>& basis, const BakeCompressedBasis& cpca,
-                            const std::vector<VectorXd>& looks, double* max_error, double* mean_error) {
+                            const std::vector<VectorXd>& looks, const std::vector<MatrixXd>& direct,
+                            double* max_error, double* mean_error) {
   const MatrixXd x = StackChannels(basis);
   const Index terms = basis[0].cols(), receivers = x.rows();
   const MatrixXd k = LookMatrix(looks, terms);
-  const VectorXd peak = LookPeaks(x, k);
+  const VectorXd peak = LookPeaks(x, k, direct);
   const uint32_t r = cpca.components;
   const Index nv = static_cast<Index>(cpca.cluster_count()) * (r + 1);
   MatrixXd vecs(nv, 3 * terms);  // dequantised
@@ -191,15 +194,15 @@ void MeasureCompressedError(const std::array<MatrixXd, 3>& basis, const BakeComp
 }
 
 CompressionStats CompressBasis(const std::array<MatrixXd, 3>& basis, const std::vector<VectorXd>& looks,
-                               double max_error, int threads, BakeCompressedBasis* out,
-                               std::vector<CompressionPoint>* curve) {
+                               const std::vector<MatrixXd>& direct, double max_error, int threads,
+                               BakeCompressedBasis* out, std::vector<CompressionPoint>* curve) {
   const MatrixXd x = StackChannels(basis);
   const Index terms = basis[0].cols(), receivers = x.rows();
   CompressionStats stats;
   stats.bytes = 2 * 3 * static_cast<uint64_t>(terms * receivers) + 8 * 3 * static_cast<uint64_t>(terms);
   if (receivers == 0 || terms == 0 || looks.empty()) return stats;
   const MatrixXd k = LookMatrix(looks, terms);
-  const VectorXd peak = LookPeaks(x, k);
+  const VectorXd peak = LookPeaks(x, k, direct);
   std::vector<Candidate> passing;
   std::vector<std::vector<ClusterPca>> by_size;
   std::vector<uint32_t> sizes;
@@ -254,7 +257,7 @@ CompressionStats CompressBasis(const std::array<MatrixXd, 3>& basis, const std::
     BakeCompressedBasis cpca;
     Quantise(by_size[s], cand.components, terms, receivers, &cpca);
     double worst = 0, mean = 0;
-    MeasureCompressedError(basis, cpca, looks, &worst, &mean);
+    MeasureCompressedError(basis, cpca, looks, direct, &worst, &mean);
     if (worst > max_error) continue;
     stats.compressed = true;
     stats.clusters = cpca.cluster_count();

@@ -27,24 +27,29 @@ namespace relight::baker {
 struct CompressionStats {
   bool compressed = false;  // false: the basis stays as it is (nothing smaller met the target)
   uint32_t clusters = 0, components = 0;
-  // Over the looks, of each look's peak |value| of this basis (its own SH part):
-  // the largest and the mean absolute error of the compressed form.
+  // Over the looks, of each look's peak value of the luminaire's light on
+  // these receivers (its SH part plus, when given, its direct light): the
+  // largest and the mean absolute error of the compressed form.
   double max_error = 0, mean_error = 0;
   uint64_t bytes = 0;  // in memory: compressed, or the int16 basis when not compressed
 };
 
 // basis[c]: receivers x terms (per candela of Y_t, as luminance_basis.h);
 // looks: SH coefficient vectors (terms each, candela) to measure the error
-// at; max_error: the target, a fraction of each look's peak (> 0). Fills
-// `out` when compressing pays; `curve`, if given, receives every candidate.
+// at; direct: empty, or per look the luminaire's exact direct light on the
+// receivers (receivers x 3), which counts towards each look's peak;
+// max_error: the target, a fraction of each look's peak (> 0). Fills `out`
+// when compressing pays; `curve`, if given, receives every candidate.
 CompressionStats CompressBasis(const std::array<Eigen::MatrixXd, 3>& basis,
-                               const std::vector<Eigen::VectorXd>& looks, double max_error,
+                               const std::vector<Eigen::VectorXd>& looks,
+                               const std::vector<Eigen::MatrixXd>& direct, double max_error,
                                int threads, BakeCompressedBasis* out,
                                std::vector<CompressionPoint>* curve = nullptr);
 
 // The error of `cpca` as stored (quantised), at the looks, as in CompressionStats.
 void MeasureCompressedError(const std::array<Eigen::MatrixXd, 3>& basis,
                             const BakeCompressedBasis& cpca, const std::vector<Eigen::VectorXd>& looks,
-                            double* max_error, double* mean_error);
+                            const std::vector<Eigen::MatrixXd>& direct, double* max_error,
+                            double* mean_error);
 
 }  // namespace relight::baker

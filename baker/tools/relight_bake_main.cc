@@ -75,9 +75,10 @@ struct Args {
   // Clustered-PCA compression of the bases: the largest error, percent of
   // each luminaire's own SH peak at random looks (docs/performance.md,
   // "Compressed bases"); 0 or --no-compress stores them uncompressed.
-  double compress_error_percent = 2.0;
+  double compress_error_percent = 100 * relight::baker::kDefaultCompressError;
   bool no_compress = false;
   std::string compress_curve_path;  // CSV of every candidate weighed, for the docs' plot
+  std::string recompress_path;      // an uncompressed bake of the scene to compress anew
   std::vector<std::string> sets;
 };
 
@@ -283,9 +284,16 @@ int Run(const Args& args) {
     {
       // The solver's form factors and links are freed before the file is
       // written: the stored hierarchy's encoding then takes their place.
-      Baker baker(scene, options);
-      bake = baker.Bake();
-      report = baker.report();
+      if (!args.recompress_path.empty()) {
+        if (relight::Status st = relight::ReadBake(args.recompress_path, &bake); !st.ok()) {
+          return Fail(args.recompress_path + ": " + st.ToString(), kExitBadInput);
+        }
+        relight::baker::RecompressBake(scene, options, &bake, &report);
+      } else {
+        Baker baker(scene, options);
+        bake = baker.Bake();
+        report = baker.report();
+      }
     }
     std::vector<relight::BakeSectionSize> sections;
     if (relight::Status st = relight::WriteBake(bake, args.out_path, &sections); !st.ok()) {
@@ -394,6 +402,9 @@ int main(int argc, char** argv) {
   app.add_option("--compress-curve", args.compress_curve_path,
                  "write every compression candidate weighed (cluster length, components, error, "
                  "bytes) to this CSV file");
+  app.add_option("--recompress", args.recompress_path,
+                 "compress the bases of this uncompressed bake of the scene (written by "
+                 "--no-compress) instead of baking: no radiosity solve");
   app.add_flag("--no-compress", args.no_compress, "store the bases uncompressed (as --compress-error 0)");
   app.add_flag("-q,--quiet", args.quiet, "no progress bar and no summary");
   app.add_flag("--reference", args.reference,

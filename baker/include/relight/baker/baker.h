@@ -29,6 +29,11 @@ namespace relight::baker {
 enum class SolverKind { kAuto, kDense, kHierarchical };
 constexpr size_t kAutoDenseMaxPatches = 4000;
 
+// relight-bake's --compress-error default (a fraction of peak; see
+// BakeOptions::compress_error): measured to keep the stage and the Cornell
+// box within 1 % max / 0.1 % mean of peak (docs/performance.md "Compressed bases").
+inline constexpr double kDefaultCompressError = 0.02;
+
 struct BakeOptions {
   std::optional<DirectModeKind> direct_mode;  // overrides every luminaire's mode when set
   int threads = 0;                            // 0 = all cores
@@ -127,5 +132,13 @@ class Baker {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// Compresses the bases of `bake`, an uncompressed bake of `scene` (its
+// luminaires in the same order), as Baker::Bake would with
+// options.compress_error, without solving radiosity again; fills the
+// report's basis and compression fields. Throws SceneError when the two do
+// not match, std::runtime_error when the bake is compressed already.
+void RecompressBake(const Scene& scene, const BakeOptions& options, relight::Bake* bake,
+                    BakeReport* report);
 
 }  // namespace relight::baker
