@@ -14,11 +14,15 @@ Q1_15 Level(double v) {
 }
 
 // Compares engine output (LightQ12, 3 per receiver) with reference RGB values.
-void Accumulate(const int32_t* engine_q12, const std::vector<Rgb>& reference,
+// The reference and the engine cover the same receivers (both come from the
+// same bake); the loop stops at the shorter one all the same.
+template <LightQuantity Q>
+void Accumulate(RgbLightView<Q> engine, const std::vector<Rgb>& reference,
                 std::vector<double>* errors, double* peak) {
-  for (size_t r = 0; r < reference.size(); ++r) {
-    for (int c = 0; c < 3; ++c) {
-      const double got = engine_q12[3 * r + c] / 4096.0;
+  const size_t count = std::min<size_t>(reference.size(), engine.receivers());
+  for (size_t r = 0; r < count; ++r) {
+    for (uint32_t c = 0; c < 3; ++c) {
+      const double got = engine.at(static_cast<uint32_t>(r), c).raw() / 4096.0;
       errors->push_back(std::abs(got - reference[r][c]));
       *peak = std::max(*peak, std::abs(reference[r][c]));
     }

@@ -23,7 +23,7 @@ Status FramePipeline::Init(const Engine& engine, int width, int height, const Ca
 
 Status FramePipeline::Render(Engine& engine) {
   engine.Update();
-  ToneMapRgb8(tone_map_, engine.vertex_luminance(), engine.vertex_count(), vertex_rgb_.data());
+  ToneMapRgb8(tone_map_, engine.vertex_luminance(), vertex_rgb_.data());
   return frame_.Draw(vertex_rgb_.data(), pixels_.data());
 }
 

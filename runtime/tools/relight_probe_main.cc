@@ -88,8 +88,8 @@ int main(int argc, char** argv) {
   std::vector<relight::cli::GridLux> plans;
   for (size_t g = 0; g < bake.grids.size(); ++g) {
     const relight::BakeGrid& grid = bake.grids[g];
-    const int32_t* total = engine.grid_illuminance(static_cast<int>(g));
-    const int32_t* direct = engine.grid_direct_illuminance(static_cast<int>(g));
+    const int32_t* total = engine.grid_illuminance(static_cast<int>(g)).raw();
+    const int32_t* direct = engine.grid_direct_illuminance(static_cast<int>(g)).raw();
     relight::cli::GridLux plan{grid.name, grid.columns, grid.rows, {}, {}};
     for (uint32_t p = 0; p < grid.point_count(); ++p) {
       const double e = PhotometricLux(total + 3 * p);

@@ -26,8 +26,9 @@
 #include "relight/engine/tone_map.h"
 #include "relight/hal/replay_source.h"
 #include "replay_hash.h"
+#include "replay_plan.h"
+#include "replay_step.h"
 #include "relight/control/engine_binding.h"
-#include "set_args.h"
 
 namespace {
 
@@ -76,12 +77,6 @@ bool ParseArgs(int argc, char** argv, Args* args) {
   args->bake_path = positional[0];
   args->script_path = positional[1];
   return true;
-}
-
-// The one place a parameter change reaches the engine: relight-render's own
-// binding today (to become the control stage's).
-bool ApplyReplayChange(relight::Engine& engine, const relight::ParamChange& change, std::string* error) {
-  return relight::cli::ApplyChange(engine, change, error);
 }
 
 bool WriteFile(const std::string& path, const void* data, size_t size) {
@@ -155,28 +150,27 @@ int main(int argc, char** argv) {
   const uint32_t vertices = engine.vertex_count();
   std::vector<uint8_t> rgb8(static_cast<size_t>(vertices) * 3);
   std::vector<relight::ParamChange> changes(256);
-  const int64_t frame_us = std::llround(1e6 / args.fps);
-  const int frames = static_cast<int>(source.duration_us() / frame_us) + 1;
+  relight::cli::ReplayPlan plan;
+  if (std::string error; !relight::cli::PlanReplayFrames(source.duration_us(), args.fps, &plan, &error)) {
+    std::fprintf(stderr, "relight-replay-hash: error: %s: %s\n", args.script_path.c_str(), error.c_str());
+    return 2;
+  }
+  const int64_t frame_us = plan.frame_us;
+  const int frames = static_cast<int>(plan.frames);  // <= kMaxReplayFrames
   uint64_t all_luminance = relight::cli::kFnv1a64Offset, all_rgb8 = relight::cli::kFnv1a64Offset;
   std::chrono::steady_clock::duration update_time{};
   for (int i = 0; i < frames; ++i) {
     const int64_t now_us = static_cast<int64_t>(i) * frame_us;
-    size_t n;
-    while ((n = source.Poll(now_us, changes.data(), changes.size())) > 0) {
-      for (size_t k = 0; k < n; ++k) {
-        std::string error;
-        if (!ApplyReplayChange(engine, changes[k], &error)) {
-          std::fprintf(stderr, "relight-replay-hash: error: %s at %.3f s: %s\n", args.script_path.c_str(),
-                       static_cast<double>(changes[k].time_us) / 1e6, error.c_str());
-          return 2;
-        }
-      }
+    if (std::string error; !relight::cli::ApplyDueReplayChanges(source, args.script_path, now_us, engine, &changes,
+                                                                 &error)) {
+      std::fprintf(stderr, "relight-replay-hash: error: %s\n", error.c_str());
+      return 2;
     }
     const auto t0 = std::chrono::steady_clock::now();
     engine.Update();
     update_time += std::chrono::steady_clock::now() - t0;
-    const int32_t* luminance = engine.vertex_luminance();
-    relight::ToneMapRgb8(tone_map, luminance, vertices, rgb8.data());
+    const int32_t* luminance = engine.vertex_luminance().raw();
+    relight::ToneMapRgb8(tone_map, engine.vertex_luminance(), rgb8.data());
     const uint64_t h_lum = relight::cli::HashInt32Le(luminance, uint64_t{vertices} * 3);
     const uint64_t h_rgb = relight::cli::HashBytes(rgb8.data(), rgb8.size());
     all_luminance = relight::cli::HashInt32Le(luminance, uint64_t{vertices} * 3, all_luminance);

@@ -11,7 +11,7 @@
 #include "relight/render/osmesa_frame.h"
 #include "contact_sheet.h"
 #include "replay_plan.h"
-#include "set_args.h"
+#include "replay_step.h"
 
 namespace relight::cli {
 namespace {
@@ -50,16 +50,9 @@ int RenderReplay(Engine& engine, const std::string& script_path, double fps, con
   const bool tty = isatty(STDOUT_FILENO) != 0;
   for (int i = 0; i < frames; ++i) {
     const int64_t now_us = static_cast<int64_t>(i) * frame_us;
-    size_t n;
-    while ((n = source.Poll(now_us, changes.data(), changes.size())) > 0) {
-      for (size_t k = 0; k < n; ++k) {
-        std::string error;
-        if (!ApplyChange(engine, changes[k], &error)) {
-          std::fprintf(stderr, "relight-render: error: %s at %.3f s: %s\n", script_path.c_str(),
-                       static_cast<double>(changes[k].time_us) / 1e6, error.c_str());
-          return 2;
-        }
-      }
+    if (std::string error; !ApplyDueReplayChanges(source, script_path, now_us, engine, &changes, &error)) {
+      std::fprintf(stderr, "relight-render: error: %s\n", error.c_str());
+      return 2;
     }
     char path[4096];
     std::snprintf(path, sizeof path, pattern.c_str(), i);

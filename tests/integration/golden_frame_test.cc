@@ -22,7 +22,7 @@ TEST(GoldenFrame, CornellBoxMatchesGolden) {
   ToneMap tone_map;
   BuildToneMap(engine.bake().white_luminance, &tone_map);
   std::vector<uint8_t> vertex_rgb(engine.vertex_count() * 3);
-  ToneMapRgb8(tone_map, engine.vertex_luminance(), engine.vertex_count(), vertex_rgb.data());
+  ToneMapRgb8(tone_map, engine.vertex_luminance(), vertex_rgb.data());
 
   constexpr int kWidth = 320, kHeight = 320;
   OsMesaFrame frame;

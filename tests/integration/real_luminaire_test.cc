@@ -140,7 +140,7 @@ void CheckFile(const std::string& path, const std::vector<Aim>& aims) {
                                   Q16_16::FromRatio(std::llround(aim.tilt * 1000), 1000)).ok());
     ASSERT_TRUE(engine.SetRoll(0, Q16_16::FromRatio(std::llround(aim.roll * 1000), 1000)).ok());
     engine.Update();
-    const int32_t* got = engine.grid_direct_illuminance(0);
+    const int32_t* got = engine.grid_direct_illuminance(0).raw();
     const Frame f = HangingFrame(aim.pan, aim.tilt, aim.roll);
     const Vec3 lum = scene.luminaires[0].position;
     std::vector<double> want;

@@ -155,11 +155,11 @@ TEST(BeamEditing, IncrementalEditsMatchABakeWithTheEditedLid) {
   reopened.Update();
   double worst = 0, peak = 0;
   for (uint32_t v = 0; v < edited.vertex_count() * 3; ++v) {
-    worst = std::max(worst, std::abs(double(edited.vertex_luminance()[v]) - reopened.vertex_luminance()[v]));
-    peak = std::max(peak, double(reopened.vertex_luminance()[v]));
+    worst = std::max(worst, std::abs(double(edited.vertex_luminance().raw()[v]) - reopened.vertex_luminance().raw()[v]));
+    peak = std::max(peak, double(reopened.vertex_luminance().raw()[v]));
   }
   for (uint32_t p = 0; p < 25 * 3; ++p) {
-    worst = std::max(worst, std::abs(double(edited.grid_illuminance(0)[p]) - reopened.grid_illuminance(0)[p]));
+    worst = std::max(worst, std::abs(double(edited.grid_illuminance(0).raw()[p]) - reopened.grid_illuminance(0).raw()[p]));
   }
   std::printf("beam edit: incremental vs from scratch, max %.0f LSB of LightQ12 (peak %.0f)\n", worst, peak);
   EXPECT_LE(worst, 4.0);

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <new>
 #include <string>
+#include <type_traits>
 #include <unistd.h>
 #include <vector>
 
@@ -266,9 +267,9 @@ class EngineTest : public ::testing::Test {
     }
     const Outputs ref = Reference(scene_, st);
     double pv, pg, pd;
-    const double ev = RelativeError(engine_.vertex_luminance(), ref.vertex, &pv);
-    const double eg = RelativeError(engine_.grid_illuminance(0), ref.grid, &pg);
-    const double ed = RelativeError(engine_.grid_direct_illuminance(0), ref.grid_direct, &pd);
+    const double ev = RelativeError(engine_.vertex_luminance().raw(), ref.vertex, &pv);
+    const double eg = RelativeError(engine_.grid_illuminance(0).raw(), ref.grid, &pg);
+    const double ed = RelativeError(engine_.grid_direct_illuminance(0).raw(), ref.grid_direct, &pd);
     std::printf("  %s: vertices peak %.3f cd/m2 err %.2e of peak; grid peak %.2f lux err %.2e; "
                 "grid direct peak %.2f lux err %.2e\n",
                 label, pv, ev, pg, eg, pd, ed);
@@ -278,8 +279,8 @@ class EngineTest : public ::testing::Test {
     EXPECT_LE(ed, 1e-3) << label;
   }
   std::vector<int32_t> Vertices() const {
-    return std::vector<int32_t>(engine_.vertex_luminance(),
-                                engine_.vertex_luminance() + engine_.vertex_count() * 3);
+    const LuminanceView view = engine_.vertex_luminance();
+    return std::vector<int32_t>(view.begin(), view.end());
   }
   TestScene scene_;
   Engine engine_;
@@ -386,14 +387,38 @@ TEST_F(EngineTest, BadIndexClampingAndWrapping) {
   ASSERT_TRUE(direct.Open(MakeBake(scene_)).ok());
   ASSERT_TRUE(direct.SetPanTilt(0, Deg(10), Deg(20)).ok());
   direct.Update();
-  EXPECT_EQ(Vertices(), std::vector<int32_t>(direct.vertex_luminance(),
-                                             direct.vertex_luminance() + direct.vertex_count() * 3));
+  const LuminanceView direct_view = direct.vertex_luminance();
+  EXPECT_EQ(Vertices(), std::vector<int32_t>(direct_view.begin(), direct_view.end()));
   CheckAgainstFloat("wrapped angles");
   Engine closed;
   EXPECT_EQ(closed.SetDimmer(0, Level(1)).code(), StatusCode::kInvalidArgument);
-  EXPECT_EQ(closed.vertex_luminance(), nullptr);
-  EXPECT_EQ(engine_.grid_illuminance(1), nullptr);
-  EXPECT_EQ(engine_.grid_direct_illuminance(-1), nullptr);
+  EXPECT_TRUE(closed.vertex_luminance().empty());
+  EXPECT_EQ(closed.vertex_luminance().raw(), nullptr);
+  EXPECT_TRUE(engine_.grid_illuminance(1).empty());
+  EXPECT_TRUE(engine_.grid_direct_illuminance(-1).empty());
+}
+
+// The typed outputs: sized by what they cover, channel reads equal to the
+// raw buffer, luminance and illuminance not interchangeable.
+static_assert(!std::is_convertible<LuminanceView, IlluminanceView>::value, "quantities do not mix");
+static_assert(!std::is_convertible<IlluminanceView, LuminanceView>::value, "quantities do not mix");
+TEST_F(EngineTest, OutputViewsCoverTheirReceivers) {
+  const LuminanceView vertices = engine_.vertex_luminance();
+  ASSERT_EQ(vertices.receivers(), engine_.vertex_count());
+  ASSERT_EQ(vertices.raw_size(), size_t{engine_.vertex_count()} * 3);
+  bool any_lit = false;
+  for (uint32_t v = 0; v < vertices.receivers(); ++v) {
+    for (uint32_t c = 0; c < 3; ++c) {
+      ASSERT_EQ(vertices.at(v, c).raw(), vertices.raw()[v * 3 + c]);
+      any_lit = any_lit || vertices.at(v, c).raw() > 0;
+    }
+  }
+  EXPECT_TRUE(any_lit);
+  const IlluminanceView total = engine_.grid_illuminance(0);
+  const IlluminanceView direct = engine_.grid_direct_illuminance(0);
+  EXPECT_EQ(total.receivers(), engine_.bake().grids[0].point_count());
+  EXPECT_EQ(direct.receivers(), total.receivers());
+  EXPECT_FALSE(total.empty());
 }
 
 TEST_F(EngineTest, ResultDoesNotDependOnTheOrderOfSetCalls) {
@@ -414,10 +439,10 @@ TEST_F(EngineTest, ResultDoesNotDependOnTheOrderOfSetCalls) {
   ASSERT_TRUE(other.SetPanTilt(0, Deg(12.5), Deg(33)).ok());
   other.Update();
   const uint32_t n = engine_.vertex_count() * 3;
-  for (uint32_t i = 0; i < n; ++i) ASSERT_EQ(engine_.vertex_luminance()[i], other.vertex_luminance()[i]);
+  for (uint32_t i = 0; i < n; ++i) ASSERT_EQ(engine_.vertex_luminance().raw()[i], other.vertex_luminance().raw()[i]);
   for (uint32_t i = 0; i < 27; ++i) {
-    ASSERT_EQ(engine_.grid_illuminance(0)[i], other.grid_illuminance(0)[i]);
-    ASSERT_EQ(engine_.grid_direct_illuminance(0)[i], other.grid_direct_illuminance(0)[i]);
+    ASSERT_EQ(engine_.grid_illuminance(0).raw()[i], other.grid_illuminance(0).raw()[i]);
+    ASSERT_EQ(engine_.grid_direct_illuminance(0).raw()[i], other.grid_direct_illuminance(0).raw()[i]);
   }
   CheckAgainstFloat("mixed state");
 }
@@ -458,8 +483,8 @@ TEST_F(EngineTest, SettersAndUpdateDoNotAllocate) {
 TEST_F(EngineTest, GridDirectIsTheExactDirectLuminaireOnly) {
   ASSERT_TRUE(engine_.SetDimmer(0, Level(0)).ok());
   engine_.Update();
-  for (uint32_t i = 0; i < 27; ++i) EXPECT_EQ(engine_.grid_direct_illuminance(0)[i], 0);
-  for (uint32_t i = 0; i < 27; ++i) EXPECT_GT(engine_.grid_illuminance(0)[i], 0);
+  for (uint32_t i = 0; i < 27; ++i) EXPECT_EQ(engine_.grid_direct_illuminance(0).raw()[i], 0);
+  for (uint32_t i = 0; i < 27; ++i) EXPECT_GT(engine_.grid_illuminance(0).raw()[i], 0);
 }
 
 TEST_F(EngineTest, OpenRejectsAnInconsistentBakeAndKeepsThePrevious) {
@@ -493,7 +518,7 @@ TEST_F(EngineTest, OpenFromAFileMatchesOpenFromMemory) {
   ASSERT_TRUE(st.ok()) << st.ToString();
   std::remove(path.c_str());
   const uint32_t n = engine_.vertex_count() * 3;
-  for (uint32_t i = 0; i < n; ++i) ASSERT_EQ(from_file.vertex_luminance()[i], engine_.vertex_luminance()[i]);
+  for (uint32_t i = 0; i < n; ++i) ASSERT_EQ(from_file.vertex_luminance().raw()[i], engine_.vertex_luminance().raw()[i]);
   EXPECT_EQ(from_file.Open(path + ".missing").code(), StatusCode::kNotFound);
   EXPECT_TRUE(from_file.is_open());  // keeps the bake it had
 }

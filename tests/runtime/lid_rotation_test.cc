@@ -346,7 +346,7 @@ TEST(EngineTableLid, TermWeightsAreTheRotatedCoefficients) {
     const std::vector<double> world =
         baker::RotateSh(degree, baker::ShRotationMatrices(degree, r), local);
     for (int t = 0; t < terms; ++t) {
-      const double got = engine.vertex_luminance()[3 * t] / 4096.0;
+      const double got = engine.vertex_luminance().raw()[3 * t] / 4096.0;
       worst = std::max(worst, std::abs(got - world[t]));
       largest = std::max(largest, std::abs(world[t]));
     }

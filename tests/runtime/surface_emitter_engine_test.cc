@@ -55,7 +55,7 @@ TEST(SurfaceEmitterSolve, MatchesTheBakersFloat64Solve) {
   ASSERT_TRUE(engine.SetSurfaceEmitter(0, shape, light).ok());
   engine.Update();
   EXPECT_EQ(engine.last_update_emitters_solved(), 1);
-  const int32_t* got = engine.vertex_luminance();
+  const int32_t* got = engine.vertex_luminance().raw();
 
   // Reference: the emitter's covered fraction of each patch (float64 clip),
   // emitting pi L, solved by the baker's hierarchical solver.
@@ -123,7 +123,7 @@ Bake BoxBake(bool store_hierarchy) {
 const std::vector<Vec3> kBoxCeilingEmitter = {{0.3, 0.3, 1}, {0.7, 0.32, 1}, {0.6, 0.7, 1}};
 
 std::vector<int32_t> Luminance(const Engine& engine) {
-  return std::vector<int32_t>(engine.vertex_luminance(), engine.vertex_luminance() + 3 * engine.vertex_count());
+  return std::vector<int32_t>(engine.vertex_luminance().begin(), engine.vertex_luminance().end());
 }
 
 TEST(SurfaceEmitterEngine, LuminanceChangeRescalesWithoutASolve) {

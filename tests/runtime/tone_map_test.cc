@@ -25,7 +25,7 @@ double FloatCode(double luminance_q12, double white_q12) {
 uint8_t MapOne(const ToneMap& map, int32_t l) {
   const int32_t rgb[3] = {l, l, l};
   uint8_t out[3];
-  ToneMapRgb8(map, rgb, 1, out);
+  ToneMapRgb8(map, LuminanceView(rgb, 1), out);
   EXPECT_EQ(out[0], out[1]);
   EXPECT_EQ(out[0], out[2]);
   return out[0];

@@ -144,7 +144,6 @@ TEST(Zoom, NarrowerIsBrighterOnAxisAndZoomingBackIsExact) {
   Engine engine;
   ASSERT_TRUE(engine.Open(SmallZoomBake().bake).ok());
   ASSERT_TRUE(engine.SetDimmer(1, Q1_15::FromRaw(0)).ok());  // the zoom spot alone
-  const uint32_t n = engine.vertex_count() * 3;
   // The vertex nearest the point under the zoom spot, (0, 0, 0).
   const std::vector<int32_t>& pos = engine.bake().mesh.positions;
   uint32_t centre = 0;
@@ -158,11 +157,11 @@ TEST(Zoom, NarrowerIsBrighterOnAxisAndZoomingBackIsExact) {
   }
   ASSERT_TRUE(engine.SetZoom(0, Deg(12)).ok());
   engine.Update();
-  const std::vector<int32_t> narrow(engine.vertex_luminance(), engine.vertex_luminance() + n);
+  const std::vector<int32_t> narrow(engine.vertex_luminance().begin(), engine.vertex_luminance().end());
   ASSERT_TRUE(engine.SetZoom(0, Deg(48)).ok());
   engine.Update();
   EXPECT_EQ(engine.last_update_luminaires_recombined(), 1);
-  const std::vector<int32_t> wide(engine.vertex_luminance(), engine.vertex_luminance() + n);
+  const std::vector<int32_t> wide(engine.vertex_luminance().begin(), engine.vertex_luminance().end());
   EXPECT_GT(narrow[3 * centre], 4 * wide[3 * centre]);  // (48/12)^2 = 16 in peak
   for (int i = 0; i < 20; ++i) {  // zoom up and down, back to 12: no drift
     ASSERT_TRUE(engine.SetZoom(0, Deg(12 + 1.7 * i)).ok());
@@ -170,7 +169,7 @@ TEST(Zoom, NarrowerIsBrighterOnAxisAndZoomingBackIsExact) {
   }
   ASSERT_TRUE(engine.SetZoom(0, Deg(12)).ok());
   engine.Update();
-  EXPECT_EQ(std::vector<int32_t>(engine.vertex_luminance(), engine.vertex_luminance() + n), narrow);
+  EXPECT_EQ(std::vector<int32_t>(engine.vertex_luminance().begin(), engine.vertex_luminance().end()), narrow);
 }
 
 TEST(Zoom, InBlackCostsNothingUntilLitAndNothingAllocates) {

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "../bounded_file.h"
+#include "../timed_lines.h"
 #include "dmx_changes.h"
 #include "relight/hal/dmx/dmx_replay_source.h"
 
@@ -33,21 +34,12 @@ bool ParseInt(const std::string& s, int64_t lo, int64_t hi, int64_t* out) {
 
 Status ParseDmxRecording(const std::string& text, const std::string& where, DmxRecording* out) {
   DmxRecording rec;
-  std::istringstream lines(text);
-  std::string line;
-  int line_no = 0;
+  TimedLines lines(text, where, kMaxDmxReplayLineBytes);
+  const auto fail = [&](const std::string& why) { return lines.Fail(why); };
   int64_t last_us = 0;
-  while (std::getline(lines, line)) {
-    ++line_no;
-    const auto fail = [&](const std::string& why) {
-      return Status(StatusCode::kInvalidArgument, where + ":" + std::to_string(line_no) + ": " + why);
-    };
-    if (line.size() > kMaxDmxReplayLineBytes) {
-      return fail("line is " + std::to_string(line.size()) + " bytes, more than the limit of " +
-                  std::to_string(kMaxDmxReplayLineBytes));
-    }
-    if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    std::istringstream words(line);
+  std::istringstream words;
+  Status status;
+  while (lines.Next(&words, &status)) {
     std::string time_text, universe_text, item;
     if (!(words >> time_text)) continue;  // blank or comment
     int64_t time_us = 0, universe = 0;
@@ -94,6 +86,7 @@ Status ParseDmxRecording(const std::string& text, const std::string& where, DmxR
     if (frame.run_count == 0) return fail("a frame needs at least one SLOT=HEX after its universe");
     rec.frames.push_back(frame);
   }
+  RELIGHT_RETURN_IF_ERROR(status);
   *out = std::move(rec);
   return Status::Ok();
 }

@@ -1,6 +1,7 @@
 #include "relight/hal/replay_source.h"
 
 #include "../bounded_file.h"
+#include "../timed_lines.h"
 #include "relight/hal/param_text.h"
 
 #include <cerrno>
@@ -13,24 +14,14 @@ namespace relight::hal {
 Status ParseReplayScript(const std::string& text, const std::string& where, const std::vector<std::string>& fixtures,
                          std::vector<ParamChange>* out) {
   std::vector<ParamChange> changes;
-  std::istringstream lines(text);
-  std::string line;
-  int line_no = 0;
+  TimedLines lines(text, where, kMaxReplayLineBytes);
+  const auto fail = [&](const std::string& why) { return lines.Fail(why); };
   int64_t last_us = 0;
-  while (std::getline(lines, line)) {
-    ++line_no;
-    if (line.size() > kMaxReplayLineBytes) {
-      return Status(StatusCode::kInvalidArgument,
-                    where + ":" + std::to_string(line_no) + ": line is " + std::to_string(line.size()) +
-                        " bytes, more than the limit of " + std::to_string(kMaxReplayLineBytes));
-    }
-    if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    std::istringstream words(line);
+  std::istringstream words;
+  Status status;
+  while (lines.Next(&words, &status)) {
     std::string time_text;
     if (!(words >> time_text)) continue;  // blank or comment
-    const auto fail = [&](const std::string& why) {
-      return Status(StatusCode::kInvalidArgument, where + ":" + std::to_string(line_no) + ": " + why);
-    };
     errno = 0;
     char* end = nullptr;
     const double seconds = std::strtod(time_text.c_str(), &end);
@@ -58,6 +49,7 @@ Status ParseReplayScript(const std::string& text, const std::string& where, cons
     }
     if (items == 0) return fail("a time needs at least one FIXTURE.PARAM=VALUE after it");
   }
+  RELIGHT_RETURN_IF_ERROR(status);
   *out = std::move(changes);
   return Status::Ok();
 }

@@ -284,20 +284,21 @@ void Engine::Update() {
   if (impl_) impl_->Update();
 }
 
-const int32_t* Engine::vertex_luminance() const {
-  return impl_ ? impl_->out.vertex.data() : nullptr;
+LuminanceView Engine::vertex_luminance() const {
+  if (!impl_) return {};
+  return LuminanceView(impl_->out.vertex.data(), impl_->bake.mesh.vertex_count());
 }
 
 uint32_t Engine::vertex_count() const { return impl_ ? impl_->bake.mesh.vertex_count() : 0; }
 
-const int32_t* Engine::grid_illuminance(int grid) const {
-  if (!impl_ || grid < 0 || grid >= static_cast<int>(impl_->out.grid_total.size())) return nullptr;
-  return impl_->out.grid_total[grid].data();
+IlluminanceView Engine::grid_illuminance(int grid) const {
+  if (!impl_ || grid < 0 || grid >= static_cast<int>(impl_->out.grid_total.size())) return {};
+  return IlluminanceView(impl_->out.grid_total[grid].data(), impl_->bake.grids[grid].point_count());
 }
 
-const int32_t* Engine::grid_direct_illuminance(int grid) const {
-  if (!impl_ || grid < 0 || grid >= static_cast<int>(impl_->out.grid_direct.size())) return nullptr;
-  return impl_->out.grid_direct[grid].data();
+IlluminanceView Engine::grid_direct_illuminance(int grid) const {
+  if (!impl_ || grid < 0 || grid >= static_cast<int>(impl_->out.grid_direct.size())) return {};
+  return IlluminanceView(impl_->out.grid_direct[grid].data(), impl_->bake.grids[grid].point_count());
 }
 
 int Engine::last_update_luminaires_recombined() const {

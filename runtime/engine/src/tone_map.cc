@@ -105,8 +105,9 @@ void BuildToneMap(int32_t white_q12, ToneMap* out) {
   }
 }
 
-void ToneMapRgb8(const ToneMap& map, const int32_t* rgb_q12, uint32_t count, uint8_t* out) {
-  const size_t n = static_cast<size_t>(count) * 3;
+void ToneMapRgb8(const ToneMap& map, LuminanceView luminance, uint8_t* out) {
+  const int32_t* rgb_q12 = luminance.raw();
+  const size_t n = luminance.raw_size();
   for (size_t i = 0; i < n; ++i) {
     const int32_t l = rgb_q12[i] > 0 ? rgb_q12[i] : 0;
     const uint32_t fine_index = static_cast<uint32_t>(l) >> map.fine_shift;

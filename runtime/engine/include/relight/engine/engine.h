@@ -5,7 +5,7 @@
 //   Status st = engine.Open("living_room.rlb");   // the only allocation
 //   engine.SetPanTilt(0, Q16_16::FromInt(30), Q16_16::FromInt(45));
 //   engine.Update();                               // integer-only, no heap
-//   const int32_t* rgb = engine.vertex_luminance(); // LightQ12 cd/m^2, 3 per vertex
+//   LuminanceView rgb = engine.vertex_luminance(); // LightQ12 cd/m^2 per vertex and channel
 //
 // Caching: each luminaire keeps its own un-dimmed, white-light result
 // (direct + indirect, per channel). A pan/tilt change recomputes only that
@@ -23,6 +23,7 @@
 #include "relight/bake/bake.h"
 #include "relight/base/fixed.h"
 #include "relight/base/fixture_state.h"
+#include "relight/base/light_view.h"
 #include "relight/base/status.h"
 #include "relight/engine/surface_emitter.h"
 
@@ -114,13 +115,14 @@ class Engine {
   // Brings the outputs up to date with the state. Integer-only, no allocation.
   void Update();
 
-  // Per vertex RGB luminance, LightQ12 cd/m^2 (1 LSB = 1/4096 cd/m^2), 3 per vertex.
-  const int32_t* vertex_luminance() const;
+  // Per vertex RGB luminance, LightQ12 cd/m^2 (1 LSB = 1/4096 cd/m^2); an
+  // empty view when closed. Views stay valid until the next Open.
+  LuminanceView vertex_luminance() const;
   uint32_t vertex_count() const;
-  // Per point RGB illuminance on calculation grid `grid`, LightQ12 lux,
-  // 3 per point: total and direct only.
-  const int32_t* grid_illuminance(int grid) const;
-  const int32_t* grid_direct_illuminance(int grid) const;
+  // Per point RGB illuminance on calculation grid `grid`, LightQ12 lux:
+  // total and direct only; an empty view for a bad index or when closed.
+  IlluminanceView grid_illuminance(int grid) const;
+  IlluminanceView grid_direct_illuminance(int grid) const;
 
   // Counters for tests and benchmarks: how many luminaire caches were rebuilt
   // by the last Update(), and how many SH term passes that took.

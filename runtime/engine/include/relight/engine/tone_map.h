@@ -8,6 +8,8 @@
 
 #include <cstdint>
 
+#include "relight/base/light_view.h"
+
 #include "relight/base/fixed.h"
 
 namespace relight {
@@ -24,7 +26,7 @@ struct ToneMap {
 
 // white_q12 > 0. Values above about 4x white saturate to 255.
 void BuildToneMap(int32_t white_q12, ToneMap* out);
-// rgb_q12: 3 per vertex; out: 3 bytes per vertex.
-void ToneMapRgb8(const ToneMap& map, const int32_t* rgb_q12, uint32_t count, uint8_t* out);
+// out: 3 bytes (sRGB r, g, b) per vertex of `luminance`.
+void ToneMapRgb8(const ToneMap& map, LuminanceView luminance, uint8_t* out);
 
 }  // namespace relight
