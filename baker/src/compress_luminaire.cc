@@ -10,7 +10,7 @@ namespace relight::baker {
 namespace {
 
 // Looks the compression error is measured at, per luminaire (compression_looks.h).
-constexpr int kCompressionLooks = 8;
+constexpr int kCompressionLooks = 16;
 constexpr uint32_t kCompressionSeed = 13;
 
 }  // namespace

@@ -110,8 +110,8 @@ int main(int argc, char** argv) {
     SetLook(&rng, &a, &b);
     a.Update();
     b.Update();
-    const int32_t* va = a.vertex_luminance();
-    const int32_t* vb = b.vertex_luminance();
+    const int32_t* va = a.vertex_luminance().raw();
+    const int32_t* vb = b.vertex_luminance().raw();
     double peak = 0, max_err = 0, sum = 0;
     for (size_t i = 0; i < n; ++i) {
       const double ref = va[i], d = std::abs(static_cast<double>(vb[i]) - ref);

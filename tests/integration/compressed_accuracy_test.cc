@@ -53,8 +53,8 @@ void CompareAtRandomLooks(baker::DirectModeKind mode, const char* label) {
     const size_t n = size_t{a.vertex_count()} * 3;
     double peak = 0, max_err = 0, sum = 0;
     for (size_t i = 0; i < n; ++i) {
-      const double d = std::abs(static_cast<double>(b.vertex_luminance()[i]) - a.vertex_luminance()[i]);
-      peak = std::max(peak, static_cast<double>(a.vertex_luminance()[i]));
+      const double d = std::abs(static_cast<double>(b.vertex_luminance().raw()[i]) - a.vertex_luminance().raw()[i]);
+      peak = std::max(peak, static_cast<double>(a.vertex_luminance().raw()[i]));
       max_err = std::max(max_err, d);
       sum += d;
     }

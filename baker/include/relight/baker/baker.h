@@ -32,7 +32,7 @@ constexpr size_t kAutoDenseMaxPatches = 4000;
 // relight-bake's --compress-error default (a fraction of peak; see
 // BakeOptions::compress_error): measured to keep the stage and the Cornell
 // box within 1 % max / 0.1 % mean of peak (docs/performance.md "Compressed bases").
-inline constexpr double kDefaultCompressError = 0.02;
+inline constexpr double kDefaultCompressError = 0.01;
 
 struct BakeOptions {
   std::optional<DirectModeKind> direct_mode;  // overrides every luminaire's mode when set
