@@ -316,7 +316,12 @@ int Run(const Args& args) {
                   args.out_path.c_str(), FileMegabytes(args.out_path),
                   HierarchySummary(sections).c_str());
     if (!args.quiet) {
-      PrintSummary(scene, report, wrote);
+      if (args.recompress_path.empty()) {
+        PrintSummary(scene, report, wrote);
+      } else {  // no mesh, solve or terms of its own to report
+        std::printf("relight-bake: %s: recompressed %s; peak memory %.0f MB; %s\n", scene.name.c_str(),
+                    args.recompress_path.c_str(), PeakMegabytes(), wrote);
+      }
       PrintCompression(report);
     }
     return 0;
