@@ -45,6 +45,7 @@ void RecompressBake(const Scene& scene, const BakeOptions& options, relight::Bak
                                                  src.name + "' in the scene, '" + lum.name + "' in the bake");
     }
     const int terms = ShTermCount(lum.sh_degree);
+    report->sh_terms += static_cast<size_t>(terms);
     std::vector<std::array<Eigen::MatrixXd, 3>> bases;
     std::vector<ReceiverSetInput> sets(lum.receivers.size());
     bases.reserve(sets.size());
