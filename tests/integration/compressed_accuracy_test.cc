@@ -18,17 +18,24 @@ namespace {
 
 constexpr int kLooks = 12;
 
-void CompareAtRandomLooks(baker::DirectModeKind mode, const char* label) {
+// require_compressed: the vertex basis must compress within the target
+// (else the baker may keep it as it is, and the engine's result is the same).
+void CompareAtRandomLooks(baker::DirectModeKind mode, const char* label, bool require_compressed) {
   const test::BakedScene& plain = test::BakedFixture("cornell_box", mode);
   baker::BakeOptions options;
   options.direct_mode = mode;
   options.compress_error = baker::kDefaultCompressError;
   baker::Baker baker(plain.scene, options);
   Bake compressed = baker.Bake();
-  ASSERT_TRUE(compressed.luminaires[0].receivers[0].compressed.present()) << "the vertex basis compresses";
-  EXPECT_TRUE(compressed.luminaires[0].receivers[0].basis.empty());
+  const bool is_compressed = compressed.luminaires[0].receivers[0].compressed.present();
+  if (require_compressed) {
+    ASSERT_TRUE(is_compressed) << "the vertex basis compresses";
+  }
+  EXPECT_EQ(compressed.luminaires[0].receivers[0].basis.empty(), is_compressed);
   const baker::BakeReport& report = baker.report();
-  EXPECT_GT(report.basis_float32_bytes, 4 * report.basis_bytes);  // the 1581-vertex box: ~5x
+  if (is_compressed) {
+    EXPECT_GT(report.basis_float32_bytes, 4 * report.basis_bytes);  // 1581 vertices: ~8x
+  }
   EXPECT_LE(report.compress_max_error, baker::kDefaultCompressError);
 
   Engine a, b;
@@ -62,9 +69,9 @@ void CompareAtRandomLooks(baker::DirectModeKind mode, const char* label) {
     worst = std::max(worst, max_err / peak);
     mean += sum / static_cast<double>(n) / peak / kLooks;
   }
-  std::printf("%s: bases %.1fx vs float32; baker's estimate max %.3f %% / mean %.4f %% of its "
+  std::printf("%s: %s, bases %.1fx vs float32; baker's estimate max %.3f %% / mean %.4f %% of its "
               "SH peak; engine over %d looks: max %.3f %% / mean %.4f %% of peak\n",
-              label, static_cast<double>(report.basis_float32_bytes) / static_cast<double>(report.basis_bytes),
+              label, is_compressed ? "compressed" : "kept uncompressed", static_cast<double>(report.basis_float32_bytes) / static_cast<double>(report.basis_bytes),
               100 * report.compress_max_error, 100 * report.compress_mean_error, kLooks, 100 * worst,
               100 * mean);
   EXPECT_LE(worst, 0.01);
@@ -72,11 +79,14 @@ void CompareAtRandomLooks(baker::DirectModeKind mode, const char* label) {
 }
 
 TEST(CompressedAccuracyTest, CornellExactDirectWithinTheBar) {
-  CompareAtRandomLooks(baker::DirectModeKind::kExact, "cornell, direct exact");
+  CompareAtRandomLooks(baker::DirectModeKind::kExact, "cornell, direct exact", true);
 }
 
-TEST(CompressedAccuracyTest, CornellAllInShWithinTheBar) {
-  CompareAtRandomLooks(baker::DirectModeKind::kAllInSh, "cornell, all in SH");
+// Dobashi's all-in-SH basis holds the beam itself: no candidate (r <= 32,
+// clusters >= 128 vertices) meets 1 % of peak on the Cornell box, so the
+// baker keeps the basis rather than exceed its target.
+TEST(CompressedAccuracyTest, CornellAllInShNeverExceedsTheTarget) {
+  CompareAtRandomLooks(baker::DirectModeKind::kAllInSh, "cornell, all in SH", false);
 }
 
 }  // namespace
