@@ -6,6 +6,7 @@
 #include "bake_hierarchy.h"
 #include "bake_lid.h"
 #include "baker_core.h"
+#include "compress_luminaire.h"
 #include "luminaire_basis.h"
 #include "quantise.h"
 #include "reference.h"
@@ -176,6 +177,17 @@ relight::Bake Baker::BakePart(const std::function<bool(size_t)>& mine, bool whol
     const LuminaireBasis basis = ComputeLuminaireBasis(core, l, EffectiveDirectMode(core));
     bake.luminaires.push_back(
         MakeBakeLuminaire(scene.luminaires[l], basis, core.options.lid_samples));
+    std::vector<ReceiverSetInput> sets(basis.sets.size());
+    for (size_t s = 0; s < sets.size(); ++s) {
+      sets[s].basis = &basis.sets[s].basis;
+      for (const DirectGeometry& d : basis.sets[s].direct) {
+        sets[s].direction.push_back(d.direction);
+        sets[s].g_m2.push_back(d.g_m2);
+      }
+      if (s == 0) sets[s].rho = &core.mesh.vertex_reflectance;
+    }
+    CompressLuminaireBases(scene.luminaires[l], l, basis.degree, sets, core.options,
+                           &bake.luminaires.back(), &impl_->report);
     terms += static_cast<size_t>(ShTermCount(basis.degree));
     impl_->progress.Advance(static_cast<size_t>(ShTermCount(basis.degree)));
   }

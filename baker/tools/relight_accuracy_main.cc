@@ -61,13 +61,14 @@ std::vector<Case> StandardCases(const std::vector<FixtureSetting>& defaults) {
 }
 
 int Run(const std::string& scene_path, relight::baker::DirectModeKind mode, const std::string& tmp_dir,
-        double lid_error) {
+        double lid_error, double compress_error) {
   using Clock = std::chrono::steady_clock;
   relight::baker::Scene scene = relight::baker::LoadScene(scene_path);
   std::vector<relight::baker::LuminaireDegree> degrees;
   if (lid_error > 0) degrees = relight::baker::ApplyLidErrorTarget(&scene, lid_error, mode);
   relight::baker::BakeOptions options;
   options.direct_mode = mode;
+  options.compress_error = compress_error;
   const auto t0 = Clock::now();
   relight::baker::Baker baker(scene, options);
   const relight::Bake bake = baker.Bake();
@@ -89,6 +90,14 @@ int Run(const std::string& scene_path, relight::baker::DirectModeKind mode, cons
   std::printf("%zu patches, %zu vertices, %zu grid points, %zu SH terms; bake %.1f s\n\n",
               baker.report().patches, baker.report().vertices, baker.report().grid_points,
               baker.report().sh_terms, bake_s);
+  if (compress_error > 0) {
+    const relight::baker::BakeReport& r = baker.report();
+    std::printf("bases compressed (--compress-error %.3g%%): %.1fx vs float32, %zu of %zu; baker's estimate "
+                "max %.2f%% / mean %.3f%% of peak\n\n",
+                100 * compress_error,
+                static_cast<double>(r.basis_float32_bytes) / static_cast<double>(r.basis_bytes),
+                r.bases_compressed, r.bases, 100 * r.compress_max_error, 100 * r.compress_mean_error);
+  }
   for (const auto& d : baker.report().zoom_degrees) {
     std::printf("%s: zoom: SH degree %d for its narrowest beam (%s LID error %.2f%%, window %s)\n\n",
                 d.name.c_str(), d.choice.degree, relight::baker::LidErrorMeasureName(d.measure),
@@ -127,20 +136,26 @@ int main(int argc, char** argv) {
       "Errors are |engine - reference| / peak of the reference, over vertices x RGB (luminance, cd/m^2)\n"
       "and over calculation-grid points x RGB (illuminance, lux)."};
   std::string scene_path, direct = "both", tmp_dir = "/tmp";
-  double lid_error_percent = 0;
+  double lid_error_percent = 0, compress_error_percent = 0;
   app.add_option("scene", scene_path, "scene file (.toml)")->required();
   app.add_option("--direct", direct, "exact | sh | both")->check(CLI::IsMember({"exact", "sh", "both"}))->capture_default_str();
   app.add_option("--tmp", tmp_dir, "folder for the temporary bake file")->capture_default_str();
   app.add_option("--lid-error", lid_error_percent,
                  "choose each luminaire's SH degree for this LID error target, percent (as relight-bake)")
       ->check(CLI::Range(0.0, 100.0));
+  app.add_option("--compress-error", compress_error_percent,
+                 "compress the bases as relight-bake --compress-error does, percent (0: uncompressed)")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   try {
     if (direct != "sh") {
-      if (int rc = Run(scene_path, relight::baker::DirectModeKind::kExact, tmp_dir, lid_error_percent / 100); rc != 0) return rc;
+      if (int rc = Run(scene_path, relight::baker::DirectModeKind::kExact, tmp_dir, lid_error_percent / 100,
+                       compress_error_percent / 100); rc != 0) return rc;
     }
     if (direct != "exact") {
-      if (int rc = Run(scene_path, relight::baker::DirectModeKind::kAllInSh, tmp_dir, lid_error_percent / 100); rc != 0) return rc;
+      if (int rc = Run(scene_path, relight::baker::DirectModeKind::kAllInSh, tmp_dir, lid_error_percent / 100,
+                       compress_error_percent / 100); rc != 0) return rc;
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "relight-accuracy: error: %s\n", e.what());

@@ -27,10 +27,14 @@
 #include "relight/baker/lid_error.h"
 #include "relight/baker/scene.h"
 #include "mesher.h"
-#include "set_args.h"
+#include "reference_output.h"
 
 namespace {
 
+using relight::bake_cli::ApplySets;
+using relight::bake_cli::GridsCsv;
+using relight::bake_cli::VerticesCsv;
+using relight::bake_cli::WriteFileAtomic;
 using relight::baker::Baker;
 using relight::baker::FixtureSetting;
 using relight::baker::ReferenceResult;
@@ -75,114 +79,19 @@ struct Args {
   bool quiet = false;
   bool reference = false;
   bool no_hierarchy = false;
+  // Clustered-PCA compression of the bases: the largest error, percent of
+  // each luminaire's own SH peak at random looks (docs/performance.md,
+  // "Compressed bases"); 0 or --no-compress stores them uncompressed.
+  double compress_error_percent = 100 * relight::baker::kDefaultCompressError;
+  bool no_compress = false;
+  std::string compress_curve_path;  // CSV of every candidate weighed, for the docs' plot
+  std::string recompress_path;      // an uncompressed bake of the scene to compress anew
   std::vector<std::string> sets;
 };
 
 int Fail(const std::string& message, int code) {
   std::fprintf(stderr, "relight-bake: error: %s\n", message.c_str());
   return code;
-}
-
-// Applies the --set arguments to the scene's default settings.
-bool ApplySets(const Scene& scene, const std::vector<std::string>& sets,
-               std::vector<FixtureSetting>* settings, std::string* error) {
-  for (const std::string& text : sets) {
-    relight::cli::SetArg arg;
-    if (!relight::cli::ParseSetArg(text, &arg, error)) return false;
-    size_t index = scene.luminaires.size();
-    for (size_t l = 0; l < scene.luminaires.size(); ++l)
-      if (scene.luminaires[l].name == arg.fixture) index = l;
-    if (index == scene.luminaires.size()) {
-      std::string names;
-      for (const auto& l : scene.luminaires) names += (names.empty() ? "" : ", ") + l.name;
-      *error = "--set '" + text + "': no luminaire '" + arg.fixture + "' in " + scene.path +
-               " (it has: " + (names.empty() ? "none" : names) + ")";
-      return false;
-    }
-    FixtureSetting& s = (*settings)[index];
-    if (arg.param == "pan") s.pan_deg = arg.values[0];
-    if (arg.param == "tilt") s.tilt_deg = arg.values[0];
-    if (arg.param == "roll") s.roll_deg = arg.values[0];
-    if (arg.param == "zoom") {
-      // Only a zooming beam has a beam angle to set; past its range the angle clamps, as in the engine.
-      const relight::baker::Luminaire& lum = scene.luminaires[index];
-      if (!lum.lid.zooms()) {
-        *error = "--set '" + text + "': luminaire '" + lum.name + "' (" + scene.path + ":" + std::to_string(lum.line) +
-                 ") has no zoom: only a \"beam\" LID with a zoom range has a beam angle to set";
-        return false;
-      }
-      const double v = arg.values[0];
-      if (v < lum.lid.zoom_min_deg || v > lum.lid.zoom_max_deg) {
-        std::fprintf(stderr,
-                     "relight-bake: --set '%s': %g degrees is outside the zoom range %g..%g of '%s'; the reference "
-                     "uses %g degrees, as the engine clamps\n",
-                     text.c_str(), v, lum.lid.zoom_min_deg, lum.lid.zoom_max_deg, lum.name.c_str(),
-                     v < lum.lid.zoom_min_deg ? lum.lid.zoom_min_deg : lum.lid.zoom_max_deg);
-      }
-      s.zoom_deg = v;
-    }
-    if (arg.param == "dimmer") s.dimmer = arg.values[0];
-    if (arg.param == "r") s.colour[0] = arg.values[0];
-    if (arg.param == "g") s.colour[1] = arg.values[0];
-    if (arg.param == "b") s.colour[2] = arg.values[0];
-    if (arg.param == "colour") s.colour = {arg.values[0], arg.values[1], arg.values[2]};
-  }
-  return true;
-}
-
-std::string CsvField(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
-double Photometric(const Rgb& rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
-
-// Writes `text` to a temporary file beside `path`, then renames it into place.
-bool WriteFileAtomic(const std::string& path, const std::string& text, std::string* error) {
-  const std::string tmp = path + ".tmp";
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) {
-    *error = path + ": cannot create (" + std::strerror(errno) + ")";
-    return false;
-  }
-  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  const bool closed = std::fclose(f) == 0;
-  if (!written || !closed || std::rename(tmp.c_str(), path.c_str()) != 0) {
-    *error = path + ": write failed (" + std::strerror(errno) + ")";
-    std::remove(tmp.c_str());
-    return false;
-  }
-  return true;
-}
-
-std::string VerticesCsv(const relight::baker::Mesh& mesh, const ReferenceResult& ref) {
-  std::string out = "index,x_m,y_m,z_m,R,G,B\n";
-  char line[256];
-  for (size_t v = 0; v < ref.vertex_luminance.size(); ++v) {
-    const Rgb& l = ref.vertex_luminance[v];
-    const relight::baker::Vec3& p = mesh.positions[v];
-    std::snprintf(line, sizeof line, "%zu,%.6f,%.6f,%.6f,%.9g,%.9g,%.9g\n", v, p[0], p[1], p[2],
-                  l[0], l[1], l[2]);
-    out += line;
-  }
-  return out;
-}
-
-std::string GridsCsv(const Scene& scene, const ReferenceResult& ref) {
-  std::string out = "grid,point,x_m,y_m,z_m,E_total_lux,E_direct_lux\n";
-  char line[256];
-  for (size_t g = 0; g < scene.grids.size(); ++g) {
-    const auto& points = scene.grids[g].points;
-    for (size_t p = 0; p < points.size(); ++p) {
-      std::snprintf(line, sizeof line, ",%zu,%.6f,%.6f,%.6f,%.9g,%.9g\n", p, points[p][0],
-                    points[p][1], points[p][2], Photometric(ref.grid_illuminance[g][p]),
-                    Photometric(ref.grid_direct_illuminance[g][p]));
-      out += CsvField(scene.grids[g].name) + line;
-    }
-  }
-  return out;
 }
 
 std::string OutputPrefix(std::string path) {
@@ -247,6 +156,21 @@ void PrintSummary(const Scene& scene, const relight::baker::BakeReport& r,
       r.solve_seconds, r.total_seconds, PeakMegabytes(), wrote.c_str());
 }
 
+// "relight-bake: bases: 21.4x vs float32, max 0.62 % / mean 0.04 % of peak (...)".
+void PrintCompression(const relight::baker::BakeReport& r) {
+  if (r.basis_bytes == 0) return;
+  std::printf("relight-bake: bases: %.1fx vs float32 (%.2f MB in memory)",
+              static_cast<double>(r.basis_float32_bytes) / static_cast<double>(r.basis_bytes),
+              static_cast<double>(r.basis_bytes) / (1024.0 * 1024.0));
+  if (r.bases_compressed > 0) {
+    std::printf(", max %.2f %% / mean %.3f %% of peak (%zu of %zu bases compressed)",
+                100 * r.compress_max_error, 100 * r.compress_mean_error, r.bases_compressed, r.bases);
+  } else {
+    std::printf(", uncompressed");
+  }
+  std::printf("\n");
+}
+
 int Run(const Args& args, const relight::baker::DistributedSession& mpi) {
   if (!args.reference && !args.sets.empty()) {
     return Fail("--set applies to --reference only (a bake takes the scene's defaults)",
@@ -271,6 +195,7 @@ int Run(const Args& args, const relight::baker::DistributedSession& mpi) {
     options.threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()) /
                                       mpi.local_ranks());
   }
+  options.compress_error = args.no_compress ? 0 : args.compress_error_percent / 100;
   if (args.lid_error_percent > 0) {
     const auto mode = options.direct_mode.value_or(relight::baker::DirectModeKind::kExact);
     for (const auto& d : relight::baker::ApplyLidErrorTarget(&scene, args.lid_error_percent / 100, mode)) {
@@ -289,19 +214,46 @@ int Run(const Args& args, const relight::baker::DistributedSession& mpi) {
     {
       // The solver's form factors and links are freed before the file is
       // written: the stored hierarchy's encoding then takes their place.
-      Baker baker(scene, options);
-      bake = relight::baker::DistributedBake(&baker, mpi, &report);
+      if (!args.recompress_path.empty()) {
+        if (relight::Status st = relight::ReadBake(args.recompress_path, &bake); !st.ok()) {
+          return Fail(args.recompress_path + ": " + st.ToString(), kExitBadInput);
+        }
+        relight::baker::RecompressBake(scene, options, &bake, &report);
+      } else {
+        Baker baker(scene, options);
+        bake = relight::baker::DistributedBake(&baker, mpi, &report);
+      }
     }
     if (!mpi.writer()) return 0;  // rank 0 writes the whole bake
     std::vector<relight::BakeSectionSize> sections;
     if (relight::Status st = relight::WriteBake(bake, args.out_path, &sections); !st.ok()) {
       return Fail(args.out_path + ": " + st.ToString(), kExitIo);
     }
+    if (!args.compress_curve_path.empty()) {
+      std::string csv = "luminaire,set,cluster_size,clusters,components,max_error,mean_error,bytes\n";
+      for (const relight::baker::CompressionPoint& p : report.compress_curve) {
+        char line[256];
+        std::snprintf(line, sizeof line, "%zu,%zu,%u,%u,%u,%.9g,%.9g,%llu\n", p.luminaire, p.set,
+                      p.cluster_size, p.clusters, p.components, p.max_error, p.mean_error,
+                      static_cast<unsigned long long>(p.bytes));
+        csv += line;
+      }
+      std::string error;
+      if (!WriteFileAtomic(args.compress_curve_path, csv, &error)) return Fail(error, kExitIo);
+    }
     char wrote[512];
     std::snprintf(wrote, sizeof wrote, "%zu SH terms; wrote %s (%.2f MB%s)", report.sh_terms,
                   args.out_path.c_str(), FileMegabytes(args.out_path),
                   HierarchySummary(sections).c_str());
-    if (!args.quiet) PrintSummary(scene, report, wrote);
+    if (!args.quiet) {
+      if (args.recompress_path.empty()) {
+        PrintSummary(scene, report, wrote);
+      } else {  // no mesh, solve or terms of its own to report
+        std::printf("relight-bake: %s: recompressed %s; peak memory %.0f MB; %s\n", scene.name.c_str(),
+                    args.recompress_path.c_str(), PeakMegabytes(), wrote);
+      }
+      PrintCompression(report);
+    }
     return 0;
   }
 
@@ -378,6 +330,19 @@ int main(int argc, char** argv) {
   app.add_flag("--no-hierarchy", args.no_hierarchy,
                "hierarchical solver: leave its quadtrees and links out of the bake (a smaller "
                "file; only run-time light sources on surfaces need them)");
+  app.add_option("--compress-error", args.compress_error_percent,
+                 "compress each luminaire's basis (clustered PCA) to the smallest form whose error "
+                 "stays within this percent of the peak of its own SH light at random looks; "
+                 "0 stores the bases uncompressed")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  app.add_option("--compress-curve", args.compress_curve_path,
+                 "write every compression candidate weighed (cluster length, components, error, "
+                 "bytes) to this CSV file");
+  app.add_option("--recompress", args.recompress_path,
+                 "compress the bases of this uncompressed bake of the scene (written by "
+                 "--no-compress) instead of baking: no radiosity solve");
+  app.add_flag("--no-compress", args.no_compress, "store the bases uncompressed (as --compress-error 0)");
   app.add_flag("-q,--quiet", args.quiet, "no progress bar and no summary");
   app.add_flag("--reference", args.reference,
                "solve with the exact distributions and write CSV instead of a bake");

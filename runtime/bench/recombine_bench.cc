@@ -6,6 +6,9 @@
 //   BM_EngineMove      Engine::Update() after a pan/tilt change (one luminaire
 //                      recombined: its SH terms and its direct term)
 //   BM_EngineDimmer    Engine::Update() after a dimmer change (no SH term touched)
+//   BM_CompressedRecombineOverStream  a compressed basis recombined in compressed
+//                      form against a vectorised read of its bytes, with the
+//                      uncompressed path's ratio beside it (issue 13)
 //
 // Report ratios within one run: Recombine / StreamRead at the same size, and
 // EngineDimmer / EngineMove. docs/performance.md has the figures and command.
@@ -19,6 +22,7 @@
 #include <random>
 #include <vector>
 
+#include "compressed_recombine.h"
 #include "recombine.h"
 #include "relight/bake/bake.h"
 #include "relight/engine/engine.h"
@@ -153,6 +157,88 @@ void SizeArgs(benchmark::internal::Benchmark* b) {
 }
 BENCHMARK(BM_StreamRead)->Apply(SizeArgs);
 BENCHMARK(BM_RecombineOverStream)->Apply(SizeArgs)->UseManualTime();
+// A compressed basis (bake.h BakeCompressedBasis) of `terms` terms over
+// `receivers` in clusters of `cluster` receivers with r components, random
+// values in range (values do not change the kernel's speed).
+relight::BakeCompressedBasis MakeCompressed(uint32_t terms, uint32_t receivers, uint32_t r,
+                                            uint32_t cluster) {
+  relight::BakeCompressedBasis c;
+  c.components = r;
+  for (uint32_t s = 0; s < receivers; s += cluster) c.cluster_start.push_back(s);
+  c.cluster_start.push_back(receivers);
+  const size_t vectors = size_t{c.cluster_count()} * (r + 1);
+  c.vectors = MakeBasis(terms, static_cast<uint32_t>(vectors));
+  c.vector_scale.assign(size_t{terms} * 3, relight::QuantScale{1 << 29, -20});
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> w(-relight::kCompressedWeightOne, relight::kCompressedWeightOne);
+  c.weights.resize(size_t{receivers} * r);
+  for (int16_t& q : c.weights) q = static_cast<int16_t>(w(rng));
+  return c;
+}
+
+// The compressed kernel's bar (issue 13): RecombineCompressedQ12 (projection
+// of the look onto the cluster vectors, then r-long dot products per
+// receiver) against a vectorised read of the bytes it reads (its weights and
+// cluster vectors), timed alternately like BM_RecombineOverStream; and, in
+// the same iterations, the uncompressed path (RecombineQ12 over the int16
+// basis of the same terms and receivers) against a vectorised read of its
+// bytes. Counters: ratio_simd (compressed / its read), uncompressed_ratio_simd,
+// speedup (uncompressed time / compressed time).
+// Args: receivers, terms, r, cluster length.
+void BM_CompressedRecombineOverStream(benchmark::State& state) {
+  using Clock = std::chrono::steady_clock;
+  const uint32_t receivers = static_cast<uint32_t>(state.range(0));
+  const uint32_t terms = static_cast<uint32_t>(state.range(1));
+  const relight::BakeCompressedBasis cpca = MakeCompressed(
+      terms, receivers, static_cast<uint32_t>(state.range(2)), static_cast<uint32_t>(state.range(3)));
+  const std::vector<int16_t> basis = MakeBasis(terms, receivers);
+  std::vector<int64_t> coef(terms);
+  for (uint32_t t = 0; t < terms; ++t) coef[t] = (int64_t{1000} + 37 * t) << 16;
+  std::vector<int32_t> k_terms(size_t{terms} * 3), projection(relight::CompressedProjectionValues(cpca));
+  const std::vector<int32_t> k = MakeMultipliers(terms);
+  std::vector<int64_t> scratch(3 * 2048);
+  std::vector<int32_t> out(static_cast<size_t>(receivers) * 3);
+  std::vector<double> cpca_s, cpca_read_s, base_s, base_read_s;
+  const auto seconds = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+  };
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    benchmark::DoNotOptimize(SumWordsSimd(cpca.weights) + SumWordsSimd(cpca.vectors));
+    const auto t1 = Clock::now();
+    relight::RecombineCompressedQ12(cpca, static_cast<int>(terms), coef.data(), k_terms.data(),
+                                    scratch.data(), static_cast<uint32_t>(scratch.size()),
+                                    projection.data(), out.data());
+    benchmark::DoNotOptimize(out.data());
+    const auto t2 = Clock::now();
+    benchmark::DoNotOptimize(SumWordsSimd(basis));
+    const auto t3 = Clock::now();
+    relight::RecombineQ12(basis.data(), terms, receivers, k.data(), 20, scratch.data(),
+                          static_cast<uint32_t>(scratch.size()), out.data());
+    benchmark::DoNotOptimize(out.data());
+    const auto t4 = Clock::now();
+    cpca_read_s.push_back(seconds(t0, t1));
+    cpca_s.push_back(seconds(t1, t2));
+    base_read_s.push_back(seconds(t2, t3));
+    base_s.push_back(seconds(t3, t4));
+    state.SetIterationTime(cpca_s.back());
+  }
+  state.counters["compressed_us"] = Median(cpca_s) * 1e6;
+  state.counters["uncompressed_us"] = Median(base_s) * 1e6;
+  state.counters["ratio_simd"] = Median(cpca_s) / Median(cpca_read_s);
+  state.counters["uncompressed_ratio_simd"] = Median(base_s) / Median(base_read_s);
+  state.counters["speedup"] = Median(base_s) / Median(cpca_s);
+  state.counters["bytes_ratio"] = static_cast<double>(basis.size()) /
+                                  static_cast<double>(cpca.weights.size() + cpca.vectors.size());
+}
+BENCHMARK(BM_CompressedRecombineOverStream)
+    ->Args({16384, 81, 8, 512})
+    ->Args({16384, 81, 16, 512})
+    ->Args({100000, 81, 8, 512})
+    ->Args({100000, 81, 16, 512})
+    ->Unit(benchmark::kMicrosecond)
+    ->UseManualTime();
+
 // Third argument: the scratch length the engine gives the kernel (3 int64 per receiver of a block).
 void ScratchArgs(benchmark::internal::Benchmark* b) {
   for (int64_t receivers : {16384, 100000}) {

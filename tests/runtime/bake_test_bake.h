@@ -315,6 +315,11 @@ inline void ExpectBakesEqual(const Bake& a, const Bake& b) {
       EXPECT_TRUE(ScalesEqual({p.geometry_scale}, {q.geometry_scale}));
       EXPECT_EQ(p.basis, q.basis);
       EXPECT_TRUE(ScalesEqual(p.basis_scale, q.basis_scale));
+      EXPECT_EQ(p.compressed.components, q.compressed.components);
+      EXPECT_EQ(p.compressed.cluster_start, q.compressed.cluster_start);
+      EXPECT_EQ(p.compressed.vectors, q.compressed.vectors);
+      EXPECT_TRUE(ScalesEqual(p.compressed.vector_scale, q.compressed.vector_scale));
+      EXPECT_EQ(p.compressed.weights, q.compressed.weights);
     }
   }
   ExpectHierarchiesEqual(a.hierarchy, b.hierarchy);

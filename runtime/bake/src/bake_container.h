@@ -52,6 +52,8 @@ class ContainerReader {
   uint32_t version() const { return version_; }
   size_t section_count() const { return toc_.size(); }
   uint64_t raw_size(size_t index) const { return toc_[index].raw; }
+  // The tag of entry `index`, 0 past the end.
+  uint32_t tag(size_t index) const { return index < toc_.size() ? toc_[index].tag : 0; }
 
   Status Corrupt(const std::string& where, const std::string& what) const;
   // Checks entry `index` is a `tag` section of a plausible raw size, before

@@ -1,4 +1,4 @@
-// On-disk layout of a bake file, format version 4: the constants the writer
+// On-disk layout of a bake file, format version 5: the constants the writer
 // and the reader share. docs/bake-format.md is the specification; keep the
 // two in step. Private to the runtime.
 #pragma once
@@ -15,7 +15,7 @@ namespace relight::bake_format {
 
 // --- File header (28 bytes) and table of contents (36 bytes per section).
 inline constexpr uint8_t kMagic[8] = {'R', 'E', 'L', 'I', 'G', 'H', 'T', '\0'};
-inline constexpr uint32_t kVersion = 4;
+inline constexpr uint32_t kVersion = 5;
 // Version 1 files still read: their LUMI sections end after the LID samples
 // (no orientation, ranges or (C, gamma) table; defaults apply).
 inline constexpr uint32_t kOldestVersion = 1;
@@ -26,6 +26,9 @@ inline constexpr uint32_t kFirstVersionWithHierarchy = 3;
 // Version 4: every LUMI ends with the zoom tail (its profile count 0 when the
 // luminaire has no zoom). Written only when some luminaire zooms.
 inline constexpr uint32_t kFirstVersionWithZoom = 4;
+// Version 5: a CPCA section (compressed basis) may stand where a BASE does.
+// Written only when some basis is compressed.
+inline constexpr uint32_t kFirstVersionWithCompressed = 5;
 inline constexpr size_t kVersionOffset = 8;
 inline constexpr size_t kSectionCountOffset = 12;
 inline constexpr size_t kFileSizeOffset = 16;
@@ -52,6 +55,7 @@ inline constexpr uint32_t kTagDirect = Fourcc('D', 'I', 'R', 'T');
 inline constexpr uint32_t kTagBasis = Fourcc('B', 'A', 'S', 'E');
 inline constexpr uint32_t kTagHierarchy = Fourcc('H', 'I', 'E', 'R');
 inline constexpr uint32_t kTagLinks = Fourcc('L', 'I', 'N', 'K');
+inline constexpr uint32_t kTagCompressed = Fourcc('C', 'P', 'C', 'A');
 
 struct TocEntry {
   uint32_t tag = 0, flags = 0;
@@ -127,6 +131,24 @@ constexpr uint64_t DirectBytes(uint64_t receivers) {
 }
 constexpr uint64_t BasisBytes(uint64_t terms, uint64_t receivers) {
   return kScaleBytes * 3 * terms + kBasisBytesPerValue * 3 * terms * receivers;
+}
+// CPCA: cluster count C, component count r, C + 1 cluster starts, the 3T
+// vector scales, the 3T x C(r+1) vector values, the receivers x r weights.
+// C (r + 1) is at most receivers + kMaxCompressedComponents + 1 (a
+// compressed basis is never much larger than the basis it replaces), which
+// bounds the section before its counts are read.
+inline constexpr uint64_t kCompressedFixedBytes = 2 * 4;
+constexpr uint64_t CompressedBytes(uint64_t terms, uint64_t receivers, uint64_t clusters,
+                                   uint64_t components) {
+  return kCompressedFixedBytes + 4 * (clusters + 1) + kScaleBytes * 3 * terms +
+         2 * 3 * terms * clusters * (components + 1) + 2 * receivers * components;
+}
+constexpr uint64_t MaxCompressedVectors(uint64_t receivers) {
+  return receivers + kMaxCompressedComponents + 1;
+}
+constexpr uint64_t MaxCompressedBytes(uint64_t terms, uint64_t receivers) {
+  return kCompressedFixedBytes + 4 * (receivers + 1) + kScaleBytes * 3 * terms +
+         2 * 3 * terms * MaxCompressedVectors(receivers) + 2 * receivers * kMaxCompressedComponents;
 }
 // HIER: count, then surface, parent, first child, child count, corner count,
 // corners, area, leaf triangle per node. LINK: count, then p, q, f_pq, f_qp,

@@ -86,7 +86,7 @@ class Parser {
     return Status::Ok();
   }
 
-  // DIRT (exact direct only) then BASE, per luminaire per receiver set. All
+  // DIRT (exact direct only) then BASE or CPCA, per luminaire per receiver set. All
   // their sizes are checked before the first one is decompressed.
   Status ParseReceivers(Bake* bake) {
     const uint32_t sets = bake->receiver_set_count();
@@ -109,10 +109,20 @@ class Parser {
             }
             ++index;
           }
-          const std::string label = ReceiverLabel("BASE", l, lum, s);
-          if (pass == 0) {
+          // Version 5 on, a compressed basis (CPCA) may stand for the BASE.
+          const bool compressed = in_.version() >= kFirstVersionWithCompressed &&
+                                  in_.tag(index) == kTagCompressed;
+          const std::string label = ReceiverLabel(compressed ? "CPCA" : "BASE", l, lum, s);
+          if (pass == 0 && compressed) {
+            RELIGHT_RETURN_IF_ERROR(in_.Expect(index, kTagCompressed, label,
+                                               CompressedBytes(terms, count, 1, 0),
+                                               MaxCompressedBytes(terms, count)));
+          } else if (pass == 0) {
             const uint64_t raw = BasisBytes(terms, count);
             RELIGHT_RETURN_IF_ERROR(in_.Expect(index, kTagBasis, label, raw, raw));
+          } else if (compressed) {
+            RELIGHT_RETURN_IF_ERROR(
+                DecodeCompressedBasis(&in_, index, label, lum.sh_degree, count, &lum.receivers[s]));
           } else {
             RELIGHT_RETURN_IF_ERROR(
                 DecodeBasis(&in_, index, label, lum.sh_degree, count, &lum.receivers[s]));

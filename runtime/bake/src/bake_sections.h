@@ -48,6 +48,11 @@ void EncodeBasis(const BakeLightReceivers& rec, std::vector<uint8_t>* out);
 Status DecodeBasis(ContainerReader* in, size_t index, const std::string& label, int degree,
                    uint32_t count, BakeLightReceivers* rec);
 
+// CPCA (bake_section_compressed.cc): a compressed basis in place of BASE.
+void EncodeCompressedBasis(const BakeCompressedBasis& cpca, std::vector<uint8_t>* out);
+Status DecodeCompressedBasis(ContainerReader* in, size_t index, const std::string& label, int degree,
+                             uint32_t count, BakeLightReceivers* rec);
+
 void EncodeHierarchyNodes(const BakeHierarchy& h, std::vector<uint8_t>* out);
 void EncodeHierarchyLinks(const BakeHierarchy& h, std::vector<uint8_t>* out);
 // HIER at `index`, LINK after it; sets bake->hierarchy.

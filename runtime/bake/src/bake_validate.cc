@@ -59,7 +59,14 @@ Status ValidateBake(const Bake& bake) {
     for (uint32_t s = 0; s < bake.receiver_set_count(); ++s) {
       const uint32_t count = bake.receiver_count(s);
       e = CheckDirect(lum.receivers[s], lum.direct_mode, count);
-      if (e.empty()) e = CheckBasis(lum.receivers[s], lum.sh_degree, count);
+      const BakeLightReceivers& rec = lum.receivers[s];
+      if (e.empty() && rec.compressed.present()) {
+        e = rec.basis.empty() && rec.basis_scale.empty()
+                ? CheckCompressedBasis(rec.compressed, lum.sh_degree, count)
+                : "has both a basis and a compressed basis";
+      } else if (e.empty()) {
+        e = CheckBasis(rec, lum.sh_degree, count);
+      }
       if (!e.empty()) return Invalid(label + ", " + SetLabel(bake, s), e);
     }
   }

@@ -28,6 +28,11 @@ uint32_t SectionCount(const Bake& bake) {
 // The lowest version that holds the bake, so older readers read what they can.
 uint32_t FileVersion(const Bake& bake) {
   for (const BakeLuminaire& lum : bake.luminaires) {
+    for (const BakeLightReceivers& rec : lum.receivers) {
+      if (rec.compressed.present()) return kFirstVersionWithCompressed;
+    }
+  }
+  for (const BakeLuminaire& lum : bake.luminaires) {
     if (lum.zoom.present()) return kFirstVersionWithZoom;
   }
   return bake.hierarchy ? kFirstVersionWithHierarchy : kVersionWithoutHierarchy;
@@ -58,7 +63,12 @@ bool WriteSections(const Bake& bake, int fd, std::vector<BakeSectionSize>* sizes
       if (lum.direct_mode == DirectMode::kExactDirect) {
         ok = ok && add(kTagDirect, [&](std::vector<uint8_t>* o) { EncodeDirect(rec, o); });
       }
-      ok = ok && add(kTagBasis, [&](std::vector<uint8_t>* o) { EncodeBasis(rec, o); });
+      if (rec.compressed.present()) {
+        ok = ok && add(kTagCompressed,
+                       [&](std::vector<uint8_t>* o) { EncodeCompressedBasis(rec.compressed, o); });
+      } else {
+        ok = ok && add(kTagBasis, [&](std::vector<uint8_t>* o) { EncodeBasis(rec, o); });
+      }
     }
   }
   if (bake.hierarchy) {

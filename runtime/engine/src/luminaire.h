@@ -54,6 +54,7 @@ struct CacheWorkspace {
   std::vector<int64_t> alm_q30, coef_q16;      // per term
   std::vector<int32_t> k;                      // per term and channel
   std::vector<int64_t> scratch;                // recombine / mix blocks
+  std::vector<int32_t> compressed_projection;  // compressed bases (compressed_recombine.h)
   std::vector<int64_t> zoom_samples_q16;       // M+1 of the largest zooming LID
   std::vector<uint32_t> reflectance_over_pi_q32;  // 3 per vertex
 };

@@ -1,6 +1,7 @@
 // The per-luminaire cache (see luminaire_cache.h).
 #include "luminaire_cache.h"
 
+#include "compressed_recombine.h"
 #include "direct.h"
 #include "fixture_frame.h"
 #include "recombine.h"
@@ -38,11 +39,18 @@ int RecomputeLuminaireCacheQ12(const Bake& bake, const BakeLuminaire& b, CacheWo
     const BakeLightReceivers& rx = b.receivers[s];
     const uint32_t count = bake.receiver_count(s);
     SetCache& cache = l.sets[s];
-    const int shift = ChannelMultipliersQ12(coef_q16, terms, rx.basis_scale.data(), work->k.data());
-    passes += static_cast<int>(RecombineQ12(rx.basis.data(), static_cast<uint32_t>(terms), count,
-                                            work->k.data(), shift, work->scratch.data(),
-                                            static_cast<uint32_t>(work->scratch.size()),
-                                            cache.light.data()));
+    if (rx.compressed.present()) {
+      passes += static_cast<int>(RecombineCompressedQ12(
+          rx.compressed, terms, coef_q16, work->k.data(), work->scratch.data(),
+          static_cast<uint32_t>(work->scratch.size()), work->compressed_projection.data(),
+          cache.light.data()));
+    } else {
+      const int shift = ChannelMultipliersQ12(coef_q16, terms, rx.basis_scale.data(), work->k.data());
+      passes += static_cast<int>(RecombineQ12(rx.basis.data(), static_cast<uint32_t>(terms), count,
+                                              work->k.data(), shift, work->scratch.data(),
+                                              static_cast<uint32_t>(work->scratch.size()),
+                                              cache.light.data()));
+    }
     if (b.direct_mode != DirectMode::kExactDirect) continue;
     DirectReceivers direct;
     direct.direction_q14 = rx.direction.data();

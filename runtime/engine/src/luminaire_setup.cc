@@ -2,6 +2,7 @@
 #include <cstddef>
 #include <utility>
 
+#include "compressed_recombine.h"
 #include "direct.h"
 #include "luminaire.h"
 #include "recombine.h"
@@ -77,6 +78,18 @@ Q16_16 WrapDegrees(Q16_16 degrees) {
 
 Q1_15 ClampUnit(Q1_15 v) { return v.raw() < 0 ? Q1_15::FromRaw(0) : v; }
 
+// The largest projection scratch any compressed basis needs (at least 1).
+static size_t MaxCompressedProjection(const Bake& bake) {
+  uint64_t most = 1;
+  for (const BakeLuminaire& b : bake.luminaires) {
+    for (const BakeLightReceivers& rx : b.receivers) {
+      const uint64_t n = CompressedProjectionValues(rx.compressed);
+      if (n > most) most = n;
+    }
+  }
+  return static_cast<size_t>(most);
+}
+
 Status SetUpLuminaires(const Bake& bake, std::vector<LuminaireRuntime>* lums,
                        CacheWorkspace* work) {
   InitShTables(&work->sh);
@@ -111,6 +124,7 @@ Status SetUpLuminaires(const Bake& bake, std::vector<LuminaireRuntime>* lums,
       if (s > 0 && b.direct_mode == DirectMode::kExactDirect) l.sets[s].direct.assign(n, 0);
     }
   }
+  work->compressed_projection.assign(MaxCompressedProjection(bake), 0);
   work->zoom_samples_q16.assign(max_zoom_samples, 0);
   work->alm_q30.assign(max_terms, 0);
   work->coef_q16.assign(max_terms, 0);

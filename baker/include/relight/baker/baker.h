@@ -30,6 +30,10 @@ enum class SolverKind { kAuto, kDense, kHierarchical };
 constexpr size_t kAutoDenseMaxPatches = 4000;
 
 class WorkShare;  // relight/baker/work_share.h
+// relight-bake's --compress-error default (a fraction of peak; see
+// BakeOptions::compress_error): measured to keep the stage and the Cornell
+// box within 1 % max / 0.1 % mean of peak (docs/performance.md "Compressed bases").
+inline constexpr double kDefaultCompressError = 0.01;
 
 struct BakeOptions {
   std::optional<DirectModeKind> direct_mode;  // overrides every luminaire's mode when set
@@ -54,6 +58,20 @@ struct BakeOptions {
   // Hierarchical: store the quadtrees and links in the bake (sections HIER
   // and LINK) for light sources placed on surfaces at run time.
   bool store_hierarchy = true;
+  // Clustered-PCA compression of the bases (compress_basis.h): the largest
+  // error allowed, a fraction of the peak of each luminaire's own SH light
+  // at random looks; 0 stores the bases uncompressed.
+  double compress_error = 0;
+};
+
+// One rate-error point of the basis compression: a cluster length and
+// component count, its error (unquantised, fractions of peak as
+// BakeOptions::compress_error) and its bytes in memory.
+struct CompressionPoint {
+  size_t luminaire = 0, set = 0;
+  uint32_t cluster_size = 0, clusters = 0, components = 0;
+  double max_error = 0, mean_error = 0;
+  uint64_t bytes = 0;
 };
 
 struct BakeReport {
@@ -66,6 +84,14 @@ struct BakeReport {
   double residual = 0;  // hierarchical: largest residual a solve stopped at, of its peak exitance
   // Zooming beams without a scene sh_degree: the degree their narrowest angle got.
   std::vector<LuminaireDegree> zoom_degrees;
+  // Bases in memory (compressed or int16) against the same values as float32,
+  // and the compression's largest and mean error (fractions of peak, as
+  // BakeOptions::compress_error) over the compressed ones.
+  uint64_t basis_bytes = 0, basis_float32_bytes = 0;
+  size_t bases_compressed = 0, bases = 0;
+  double compress_max_error = 0, compress_mean_error = 0;
+  // Every candidate the compression weighed (the docs' rate-error curve).
+  std::vector<CompressionPoint> compress_curve;
 };
 
 // One fixture's state for a reference solve (same meaning as the runtime's).
@@ -119,5 +145,13 @@ class Baker {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// Compresses the bases of `bake`, an uncompressed bake of `scene` (its
+// luminaires in the same order), as Baker::Bake would with
+// options.compress_error, without solving radiosity again; fills the
+// report's basis and compression fields. Throws SceneError when the two do
+// not match, std::runtime_error when the bake is compressed already.
+void RecompressBake(const Scene& scene, const BakeOptions& options, relight::Bake* bake,
+                    BakeReport* report);
 
 }  // namespace relight::baker

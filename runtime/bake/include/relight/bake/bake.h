@@ -111,6 +111,40 @@ struct BakeZoom {
   bool present() const { return !profile.empty(); }
 };
 
+// Clustered principal components of one basis (Sloan et al. 2003, "Clustered
+// principal components for precomputed radiance transfer"), held instead of
+// BakeLightReceivers::basis (format version 5 on, section CPCA). Each
+// receiver's 3 x (N+1)^2 basis values are its cluster's mean plus a weighted
+// sum of r component vectors. Clusters are runs of consecutive receivers.
+//   vectors: per (term, channel) one row of cluster_count * (r + 1) values,
+//     term-major like `basis`: vectors[(t * V + c * (r + 1) + j) * 3 + ch]
+//     with V = cluster_count * (r + 1); j = 0 is cluster c's mean, j >= 1 its
+//     component j - 1, scaled so that a weight of 1 is the largest any of the
+//     cluster's receivers has; real = q * vector_scale[t * 3 + ch].
+//   weights: cluster by cluster, component-major inside a cluster: receiver
+//     cluster_start[c] + i has weight j at weights[cluster_start[c] * r + j * n_c + i]
+//     (n_c its cluster's size); real weight = q / kCompressedWeightOne.
+// The runtime recombines this form without expanding it (engine, compressed_recombine.h).
+inline constexpr int16_t kCompressedWeightOne = 16383;
+inline constexpr uint32_t kMaxCompressedComponents = 64;
+
+struct BakeCompressedBasis {
+  uint32_t components = 0;               // r, in [0, kMaxCompressedComponents]
+  std::vector<uint32_t> cluster_start;   // C + 1: 0 first, the receiver count last, increasing
+  std::vector<int16_t> vectors;          // 3 x terms x C x (r + 1), see above
+  std::vector<QuantScale> vector_scale;  // [term][channel]
+  std::vector<int16_t> weights;          // receivers x r, each in [-kCompressedWeightOne, kCompressedWeightOne]
+  bool present() const { return !cluster_start.empty(); }
+  uint32_t cluster_count() const {
+    return cluster_start.empty() ? 0 : static_cast<uint32_t>(cluster_start.size() - 1);
+  }
+  // Bytes of the arrays held in memory.
+  uint64_t memory_bytes() const {
+    return 4 * uint64_t{cluster_start.size()} + 2 * uint64_t{vectors.size()} +
+           8 * uint64_t{vector_scale.size()} + 2 * uint64_t{weights.size()};
+  }
+};
+
 // Per luminaire and receiver set.
 struct BakeLightReceivers {
   // Exact direct term (empty in DirectMode::kAllInSh).
@@ -121,6 +155,8 @@ struct BakeLightReceivers {
   // Units per candela of Y_t: cd/m^2 (vertices) or lux (grids).
   std::vector<int16_t> basis;
   std::vector<QuantScale> basis_scale;  // [term][channel]
+  // When present, the basis in compressed form; `basis` and `basis_scale` are then empty.
+  BakeCompressedBasis compressed;
 };
 
 struct BakeLuminaire {
@@ -222,7 +258,8 @@ struct BakeSectionSize {
 // Writes atomically: a temporary file beside `path`, fsync, rename. On any
 // error the previous file at `path` (if any) is untouched. The file has
 // format version 4 when a luminaire has a zoom, else 3 when it holds a
-// hierarchy, else 2 (the lowest that holds it, so older readers read it).
+// hierarchy, else 2 (the lowest that holds it, so older readers read it);
+// 5 when a basis is compressed (section CPCA).
 // `sizes`, if given, receives every section's raw and stored size, in file order.
 // Returns kOk, kInvalidArgument (inconsistent sizes, named), kIoError.
 Status WriteBake(const Bake& bake, const std::string& path,

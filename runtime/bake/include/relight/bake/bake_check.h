@@ -49,6 +49,9 @@ std::string CheckHierarchyNodes(const BakeHierarchy& h, const BakeMesh& mesh);
 // Its links against nodes that passed CheckHierarchyNodes: lengths, node
 // indices, order, surfaces, factors and gradients.
 std::string CheckHierarchyLinks(const BakeHierarchy& h);
+// A compressed basis (bake_check_compressed.cc): counts, cluster starts,
+// scales, zero-scale rows and weight range, for `receivers` points.
+std::string CheckCompressedBasis(const BakeCompressedBasis& cpca, int sh_degree, uint32_t receivers);
 // Names must tell luminaires (and grids) apart: "" or the first duplicate.
 std::string CheckUniqueNames(const std::vector<const std::string*>& names, const char* kind);
 

@@ -1,0 +1,274 @@
+// Clustered PCA of a basis (see compress_basis.h). Sloan et al. 2003.
+#include "compress_basis.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "parallel_for.h"
+#include "quantise.h"
+
+namespace relight::baker {
+namespace {
+
+// Cluster lengths tried (multiples of 16: the kernel's vector width) and the
+// most components searched; the format allows more (kMaxCompressedComponents).
+constexpr uint32_t kClusterSizes[] = {2048, 1024, 512, 256, 128};
+constexpr uint32_t kMaxSearchedComponents = 32;
+// Unquantised candidates must meet this share of the target: quantising the
+// weights and vectors adds a little error of its own.
+constexpr double kQuantisationHeadroom = 0.8;
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+// Receivers x (3 terms): channel c in columns [c T, (c + 1) T).
+MatrixXd StackChannels(const std::array<MatrixXd, 3>& basis) {
+  const Index n = basis[0].rows(), t = basis[0].cols();
+  MatrixXd x(n, 3 * t);
+  for (int c = 0; c < 3; ++c) x.middleCols(c * t, t) = basis[c];
+  return x;
+}
+
+MatrixXd LookMatrix(const std::vector<VectorXd>& looks, Index terms) {
+  MatrixXd k(terms, static_cast<Index>(looks.size()));
+  for (size_t l = 0; l < looks.size(); ++l) k.col(static_cast<Index>(l)) = looks[l];
+  return k;
+}
+
+// Per look, the largest |value| of the uncompressed basis plus the direct
+// light (if given) over receivers and channels.
+VectorXd LookPeaks(const MatrixXd& x, const MatrixXd& k, const std::vector<MatrixXd>& direct) {
+  const Index t = k.rows();
+  VectorXd peak = VectorXd::Zero(k.cols());
+  for (int c = 0; c < 3; ++c) {
+    MatrixXd v = x.middleCols(c * t, t) * k;
+    for (size_t l = 0; l < direct.size(); ++l) v.col(static_cast<Index>(l)) += direct[l].col(c);
+    peak = peak.cwiseMax(v.cwiseAbs().colwise().maxCoeff().transpose());
+  }
+  return peak;
+}
+
+struct ClusterPca {
+  Index start = 0, size = 0;
+  VectorXd mean;       // 3T
+  MatrixXd vectors;    // 3T x rc, unit principal directions, largest variance first
+  MatrixXd weights;    // size x rc
+  // [r][look]: largest and summed |error| over the cluster with r components.
+  MatrixXd max_err, sum_err;
+};
+
+ClusterPca Pca(const MatrixXd& x, Index start, Index size, Index rmax, const MatrixXd& k) {
+  ClusterPca p;
+  p.start = start;
+  p.size = size;
+  MatrixXd y = x.middleRows(start, size);
+  p.mean = y.colwise().mean().transpose();
+  y.rowwise() -= p.mean.transpose();
+  const Index d = y.cols();
+  const Index rc = std::min({rmax, size, d});
+  if (size >= d) {
+    Eigen::SelfAdjointEigenSolver<MatrixXd> es(y.transpose() * y);
+    p.vectors = es.eigenvectors().rightCols(rc).rowwise().reverse();
+  } else {  // fewer receivers than dimensions: the Gram matrix is smaller
+    Eigen::SelfAdjointEigenSolver<MatrixXd> es(y * y.transpose());
+    p.vectors = y.transpose() * es.eigenvectors().rightCols(rc).rowwise().reverse();
+    for (Index j = 0; j < rc; ++j) {
+      const double norm = p.vectors.col(j).norm();
+      p.vectors.col(j) = norm > 0 ? VectorXd(p.vectors.col(j) / norm) : VectorXd::Zero(d);
+    }
+  }
+  p.weights = y * p.vectors;
+  // Errors at the looks for r = 0 .. rc, channel by channel.
+  const Index t = k.rows(), looks = k.cols();
+  p.max_err = MatrixXd::Zero(rc + 1, looks);
+  p.sum_err = MatrixXd::Zero(rc + 1, looks);
+  for (int c = 0; c < 3; ++c) {
+    MatrixXd residual = y.middleCols(c * t, t) * k;                 // size x looks
+    const MatrixXd f = p.vectors.middleRows(c * t, t).transpose() * k;  // rc x looks
+    for (Index r = 0; r <= rc; ++r) {
+      const MatrixXd a = residual.cwiseAbs();
+      p.max_err.row(r) = p.max_err.row(r).cwiseMax(a.colwise().maxCoeff());
+      p.sum_err.row(r) += a.colwise().sum();
+      if (r < rc) residual -= p.weights.col(r) * f.row(r);
+    }
+  }
+  return p;
+}
+
+uint64_t CompressedMemory(uint64_t terms, uint64_t receivers, uint64_t clusters, uint64_t r) {
+  return 4 * (clusters + 1) + 2 * 3 * terms * clusters * (r + 1) + 8 * 3 * terms + 2 * receivers * r;
+}
+
+struct Candidate {
+  uint32_t cluster_size = 0, components = 0;
+  uint64_t bytes = 0;
+  double max_error = 0, mean_error = 0;
+};
+
+// The runtime form of clusters `pcas` with r components.
+void Quantise(const std::vector<ClusterPca>& pcas, uint32_t r, Index terms, Index receivers,
+              BakeCompressedBasis* out) {
+  const Index clusters = static_cast<Index>(pcas.size());
+  const Index nv = clusters * (r + 1);
+  MatrixXd vecs = MatrixXd::Zero(nv, 3 * terms);
+  out->components = r;
+  out->cluster_start.assign(1, 0);
+  out->weights.assign(static_cast<size_t>(receivers) * r, 0);
+  for (Index c = 0; c < clusters; ++c) {
+    const ClusterPca& p = pcas[static_cast<size_t>(c)];
+    out->cluster_start.push_back(static_cast<uint32_t>(p.start + p.size));
+    vecs.row(c * (r + 1)) = p.mean.transpose();
+    for (Index j = 0; j < static_cast<Index>(r) && j < p.vectors.cols(); ++j) {
+      // Scaled so the largest weight in the cluster is 1 (bake.h).
+      const double sigma = p.weights.col(j).cwiseAbs().maxCoeff();
+      if (!(sigma > 0)) continue;
+      vecs.row(c * (r + 1) + 1 + j) = sigma * p.vectors.col(j).transpose();
+      int16_t* w = &out->weights[static_cast<size_t>(p.start) * r + static_cast<size_t>(j * p.size)];
+      for (Index i = 0; i < p.size; ++i) {
+        const double q = std::round(p.weights(i, j) / sigma * kCompressedWeightOne);
+        w[i] = static_cast<int16_t>(std::clamp(q, -double{kCompressedWeightOne}, double{kCompressedWeightOne}));
+      }
+    }
+  }
+  out->vectors.assign(static_cast<size_t>(3 * terms * nv), 0);
+  out->vector_scale.resize(static_cast<size_t>(3 * terms));
+  for (Index t = 0; t < terms; ++t) {
+    for (Index c = 0; c < 3; ++c) {
+      out->vector_scale[static_cast<size_t>(t * 3 + c)] =
+          QuantiseInt16(vecs.col(c * terms + t).data(), static_cast<size_t>(nv), 1,
+                        &out->vectors[static_cast<size_t>(t * nv * 3 + c)], 3);
+    }
+  }
+}
+
+}  // namespace
+
+void MeasureCompressedError(const std::array<MatrixXd, 3>& basis, const BakeCompressedBasis& cpca,
+                            const std::vector<VectorXd>& looks, const std::vector<MatrixXd>& direct,
+                            double* max_error, double* mean_error) {
+  const MatrixXd x = StackChannels(basis);
+  const Index terms = basis[0].cols(), receivers = x.rows();
+  const MatrixXd k = LookMatrix(looks, terms);
+  const VectorXd peak = LookPeaks(x, k, direct);
+  const uint32_t r = cpca.components;
+  const Index nv = static_cast<Index>(cpca.cluster_count()) * (r + 1);
+  MatrixXd vecs(nv, 3 * terms);  // dequantised
+  for (Index t = 0; t < terms; ++t) {
+    for (Index c = 0; c < 3; ++c) {
+      const double s = QuantScaleValue(cpca.vector_scale[static_cast<size_t>(t * 3 + c)]);
+      for (Index v = 0; v < nv; ++v) vecs(v, c * terms + t) = s * cpca.vectors[static_cast<size_t>((t * nv + v) * 3 + c)];
+    }
+  }
+  MatrixXd recon(receivers, 3 * terms);
+  for (uint32_t cl = 0; cl < cpca.cluster_count(); ++cl) {
+    const Index s = cpca.cluster_start[cl], n = cpca.cluster_start[cl + 1] - s;
+    MatrixXd w(n, r);
+    for (uint32_t j = 0; j < r; ++j) {
+      for (Index i = 0; i < n; ++i) {
+        w(i, j) = cpca.weights[static_cast<size_t>(s * r + j * n + i)] / double{kCompressedWeightOne};
+      }
+    }
+    const Index row = static_cast<Index>(cl) * (r + 1);
+    recon.middleRows(s, n) = w * vecs.middleRows(row + 1, r);
+    recon.middleRows(s, n).rowwise() += vecs.row(row);
+  }
+  const MatrixXd diff = x - recon;
+  double worst = 0, mean = 0;
+  int counted = 0;
+  for (Index l = 0; l < k.cols(); ++l) {
+    if (!(peak(l) > 0)) continue;
+    double m = 0, sum = 0;
+    for (int c = 0; c < 3; ++c) {
+      const VectorXd e = (diff.middleCols(c * terms, terms) * k.col(l)).cwiseAbs();
+      m = std::max(m, e.maxCoeff());
+      sum += e.sum();
+    }
+    worst = std::max(worst, m / peak(l));
+    mean += sum / (3.0 * static_cast<double>(receivers)) / peak(l);
+    ++counted;
+  }
+  *max_error = worst;
+  *mean_error = counted > 0 ? mean / counted : 0;
+}
+
+CompressionStats CompressBasis(const std::array<MatrixXd, 3>& basis, const std::vector<VectorXd>& looks,
+                               const std::vector<MatrixXd>& direct, double max_error, int threads,
+                               BakeCompressedBasis* out, std::vector<CompressionPoint>* curve) {
+  const MatrixXd x = StackChannels(basis);
+  const Index terms = basis[0].cols(), receivers = x.rows();
+  CompressionStats stats;
+  stats.bytes = 2 * 3 * static_cast<uint64_t>(terms * receivers) + 8 * 3 * static_cast<uint64_t>(terms);
+  if (receivers == 0 || terms == 0 || looks.empty()) return stats;
+  const MatrixXd k = LookMatrix(looks, terms);
+  const VectorXd peak = LookPeaks(x, k, direct);
+  std::vector<Candidate> passing;
+  std::vector<std::vector<ClusterPca>> by_size;
+  std::vector<uint32_t> sizes;
+  for (uint32_t n : kClusterSizes) {
+    const Index clusters = (receivers + n - 1) / n;
+    if (!sizes.empty() && (receivers + sizes.back() - 1) / sizes.back() == clusters) continue;
+    std::vector<ClusterPca> pcas(static_cast<size_t>(clusters));
+    ParallelFor(static_cast<size_t>(clusters), threads, [&](size_t c, int) {
+      const Index start = static_cast<Index>(c) * n;
+      pcas[c] = Pca(x, start, std::min<Index>(n, receivers - start), kMaxSearchedComponents, k);
+    });
+    Index rc = 0;
+    for (const ClusterPca& p : pcas) rc = std::max(rc, p.max_err.rows() - 1);
+    for (Index r = 0; r <= rc; ++r) {
+      if (clusters * (r + 1) > receivers + Index{kMaxCompressedComponents} + 1) break;
+      Candidate cand;
+      cand.cluster_size = n;
+      cand.components = static_cast<uint32_t>(r);
+      cand.bytes = CompressedMemory(static_cast<uint64_t>(terms), static_cast<uint64_t>(receivers),
+                                    static_cast<uint64_t>(clusters), static_cast<uint64_t>(r));
+      int counted = 0;
+      for (Index l = 0; l < k.cols(); ++l) {
+        if (!(peak(l) > 0)) continue;
+        double m = 0, sum = 0;
+        for (const ClusterPca& p : pcas) {
+          const Index rr = std::min(r, p.max_err.rows() - 1);
+          m = std::max(m, p.max_err(rr, l));
+          sum += p.sum_err(rr, l);
+        }
+        cand.max_error = std::max(cand.max_error, m / peak(l));
+        cand.mean_error += sum / (3.0 * static_cast<double>(receivers)) / peak(l);
+        ++counted;
+      }
+      if (counted > 0) cand.mean_error /= counted;
+      if (curve) {
+        curve->push_back(CompressionPoint{0, 0, n, static_cast<uint32_t>(clusters), cand.components,
+                                          cand.max_error, cand.mean_error, cand.bytes});
+      }
+      if (cand.max_error <= kQuantisationHeadroom * max_error && cand.bytes < stats.bytes) {
+        passing.push_back(cand);
+      }
+    }
+    sizes.push_back(n);
+    by_size.push_back(std::move(pcas));
+  }
+  std::sort(passing.begin(), passing.end(),
+            [](const Candidate& a, const Candidate& b) { return a.bytes < b.bytes; });
+  constexpr size_t kTries = 4;
+  for (size_t i = 0; i < passing.size() && i < kTries; ++i) {
+    const Candidate& cand = passing[i];
+    const size_t s = static_cast<size_t>(std::find(sizes.begin(), sizes.end(), cand.cluster_size) - sizes.begin());
+    BakeCompressedBasis cpca;
+    Quantise(by_size[s], cand.components, terms, receivers, &cpca);
+    double worst = 0, mean = 0;
+    MeasureCompressedError(basis, cpca, looks, direct, &worst, &mean);
+    if (worst > max_error) continue;
+    stats.compressed = true;
+    stats.clusters = cpca.cluster_count();
+    stats.components = cpca.components;
+    stats.max_error = worst;
+    stats.mean_error = mean;
+    stats.bytes = cpca.memory_bytes();
+    *out = std::move(cpca);
+    return stats;
+  }
+  return stats;
+}
+
+}  // namespace relight::baker

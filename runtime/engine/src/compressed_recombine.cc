@@ -1,0 +1,122 @@
+// Recombination of a compressed basis: see compressed_recombine.h for the
+// steps and the scaling and overflow.
+#include "compressed_recombine.h"
+
+#include <cstddef>
+#include <cstdint>
+
+#include "compressed_recombine_avx2.h"
+#include "recombine.h"
+#include "recombine_avx2.h"
+#include "relight/base/status.h"
+#include "weights.h"
+
+namespace relight {
+namespace {
+
+constexpr int32_t kMeanLimit = (int32_t{1} << 30) - 1;
+constexpr int kMaxClusterShift = 31;
+
+constexpr int kMinClusterShift = -31;
+
+// round(a 2^s / kCompressedWeightOne) for 0 <= a <= 2^31, halves up; for
+// s >= 0 a 2^s <= 2^62, for s < 0 the divisor 16383 2^-s < 2^45: no overflow.
+int64_t ScaledMagnitude(int64_t a, int s) {
+  if (s >= 0) return ((a << s) + kCompressedWeightOne / 2) / kCompressedWeightOne;
+  const int64_t d = int64_t{kCompressedWeightOne} << -s;
+  return (a + d / 2) / d;
+}
+
+// mean + the rounded shifted sum, as the header defines it for any shift.
+inline int32_t Finish(int32_t mean, int32_t acc, int s) {
+  if (s >= 0) {
+    const int32_t half = s > 0 ? int32_t{1} << (s - 1) : 0;
+    return mean + ((acc + half) >> s);
+  }
+  const int64_t v = int64_t{mean} + int64_t{acc} * (int64_t{1} << -s);  // |v| < 2^62
+  return v > INT32_MAX ? INT32_MAX : (v < INT32_MIN ? INT32_MIN : static_cast<int32_t>(v));
+}
+
+}  // namespace
+
+int32_t CompressedMultiplierLimit(uint32_t components) {
+  if (components == 0) return kCompressedWeightOne;
+  const int64_t limit = ((int64_t{1} << 30) - 1) / (int64_t{components} * kCompressedWeightOne);
+  return limit < kCompressedWeightOne ? static_cast<int32_t>(limit) : kCompressedWeightOne;
+}
+
+void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, ClusterMultipliers* m) {
+  const int64_t limit = CompressedMultiplierLimit(components);
+  for (int ch = 0; ch < 3; ++ch) {
+    const int32_t mean = projection[ch];
+    m->mean[ch] = mean > kMeanLimit ? kMeanLimit : (mean < -kMeanLimit ? -kMeanLimit : mean);
+    int64_t largest = 0;
+    for (uint32_t j = 0; j < components; ++j) {
+      const int64_t p = projection[(1 + j) * 3 + ch];
+      const int64_t a = p < 0 ? -p : p;
+      if (a > largest) largest = a;
+    }
+    int s = kMaxClusterShift;
+    while (s > kMinClusterShift && ScaledMagnitude(largest, s) > limit) --s;
+    m->shift[ch] = s;
+    for (uint32_t j = 0; j < components; ++j) {
+      const int64_t p = projection[(1 + j) * 3 + ch];
+      int64_t k = ScaledMagnitude(p < 0 ? -p : p, s);
+      if (k > limit) k = limit;  // never for |P| < 2^31 at s = -31; kept as a guard
+      m->k[ch * components + j] = static_cast<int16_t>(p < 0 ? -k : k);
+    }
+  }
+}
+
+void CompressedClusterScalarQ12(const int16_t* w, uint32_t n, uint32_t components,
+                                const ClusterMultipliers& m, int32_t* out) {
+  CompressedClusterTailQ12(w, 0, n, components, m, out);
+}
+
+void CompressedClusterTailQ12(const int16_t* w, uint32_t from, uint32_t n, uint32_t components,
+                              const ClusterMultipliers& m, int32_t* out) {
+  for (int ch = 0; ch < 3; ++ch) {
+    const int16_t* k = m.k + ch * components;
+    for (uint32_t i = from; i < n; ++i) {
+      int32_t acc = 0;  // exact: |acc| < 2^30 (see the header)
+      for (uint32_t j = 0; j < components; ++j) acc += int32_t{w[size_t{j} * n + i]} * k[j];
+      out[size_t{i} * 3 + ch] = Finish(m.mean[ch], acc, m.shift[ch]);
+    }
+  }
+}
+
+void CompressedClusterQ12(const int16_t* w, uint32_t n, uint32_t components,
+                          const ClusterMultipliers& m, int32_t* out) {
+  uint32_t done = 0;
+  // Negative shifts (saturating left shifts) are rare: the scalar path takes them.
+  if (CpuHasAvx2() && n >= 16 && m.shift[0] >= 0 && m.shift[1] >= 0 && m.shift[2] >= 0) {
+    done = n - n % 16;
+    CompressedClusterAvx2Q12(w, n, components, m, out);
+  }
+  // The tail: same integers on the scalar path, weights still at stride n.
+  if (done < n) CompressedClusterTailQ12(w, done, n, components, m, out);
+}
+
+uint64_t CompressedProjectionValues(const BakeCompressedBasis& cpca) {
+  return 3 * uint64_t{cpca.cluster_count()} * (cpca.components + 1);
+}
+
+uint32_t RecombineCompressedQ12(const BakeCompressedBasis& cpca, int terms, const int64_t* coef_q16,
+                                int32_t* k_terms, int64_t* scratch, uint32_t scratch_len,
+                                int32_t* projection, int32_t* out) {
+  const uint32_t r = cpca.components;
+  RELIGHT_CHECK(r <= kMaxCompressedComponents);
+  const uint32_t vectors = cpca.cluster_count() * (r + 1);
+  const int shift = ChannelMultipliersQ12(coef_q16, terms, cpca.vector_scale.data(), k_terms);
+  const uint32_t used = RecombineQ12(cpca.vectors.data(), static_cast<uint32_t>(terms), vectors,
+                                     k_terms, shift, scratch, scratch_len, projection);
+  ClusterMultipliers m;
+  for (uint32_t c = 0; c < cpca.cluster_count(); ++c) {
+    const uint32_t start = cpca.cluster_start[c], n = cpca.cluster_start[c + 1] - start;
+    ClusterMultipliersQ12(projection + size_t{c} * (r + 1) * 3, r, &m);
+    CompressedClusterQ12(cpca.weights.data() + size_t{start} * r, n, r, m, out + size_t{start} * 3);
+  }
+  return used;
+}
+
+}  // namespace relight

@@ -1,0 +1,21 @@
+// The AVX2 body of CompressedClusterQ12 (compressed_recombine.h), apart
+// because the rest of the runtime is built with -mgeneral-regs-only.
+// Integer instructions only; bit-identical to CompressedClusterScalarQ12.
+#pragma once
+
+#include <cstdint>
+
+#include "compressed_recombine.h"
+
+namespace relight {
+
+// Receivers [0, n - n % 16) of the cluster (the caller does the tail on the
+// scalar path); same arguments and results as CompressedClusterScalarQ12,
+// for shifts >= 0 only (the caller checks).
+// Per 16 receivers and component pair: two loads, two unpacks into int16
+// pairs, and per channel two _mm256_madd_epi16 into exact int32 sums (see
+// the scaling comment there); then shift, mean, and a 3-way interleave.
+void CompressedClusterAvx2Q12(const int16_t* w, uint32_t n, uint32_t components,
+                              const ClusterMultipliers& m, int32_t* out);
+
+}  // namespace relight

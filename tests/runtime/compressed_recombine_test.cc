@@ -1,0 +1,189 @@
+// The compressed recombination (compressed_recombine.h): the per-cluster
+// kernel against an exact int64 reference on lengths that exercise the
+// vector path's tails, its AVX2 path bit-identical to the scalar one, the
+// multipliers' rounding, limits and saturation, and the whole path against
+// the float64 expansion of a compressed basis.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "compressed_recombine.h"
+#include "compressed_recombine_avx2.h"
+#include "recombine_avx2.h"
+#include "relight/base/sh_index.h"
+
+namespace relight {
+namespace {
+
+std::vector<int32_t> Reference(const std::vector<int16_t>& w, uint32_t n, uint32_t r,
+                               const ClusterMultipliers& m) {
+  std::vector<int32_t> out(size_t{n} * 3);
+  for (int ch = 0; ch < 3; ++ch) {
+    for (uint32_t i = 0; i < n; ++i) {
+      int64_t acc = 0;
+      for (uint32_t j = 0; j < r; ++j) acc += int64_t{w[size_t{j} * n + i]} * m.k[ch * r + j];
+      const int s = m.shift[ch];
+      const int64_t half = s > 0 ? int64_t{1} << (s - 1) : 0;
+      int64_t v = s >= 0 ? m.mean[ch] + ((acc + half) >> s) : m.mean[ch] + acc * (int64_t{1} << -s);
+      EXPECT_LE(std::abs(acc), (int64_t{1} << 30) - 1);
+      if (s >= 0) {
+        EXPECT_TRUE(v >= INT32_MIN && v <= INT32_MAX);  // never saturates
+      }
+      v = std::min<int64_t>(std::max<int64_t>(v, INT32_MIN), INT32_MAX);
+      out[size_t{i} * 3 + ch] = static_cast<int32_t>(v);
+    }
+  }
+  return out;
+}
+
+// Random multipliers within the limit (or at it, extreme = true) and weights
+// within the format's range (or at its ends).
+void Fill(std::mt19937* rng, uint32_t n, uint32_t r, bool extreme, std::vector<int16_t>* w,
+          ClusterMultipliers* m) {
+  const int32_t limit = CompressedMultiplierLimit(r);
+  std::uniform_int_distribution<int32_t> kd(-limit, limit), wd(-kCompressedWeightOne, kCompressedWeightOne);
+  std::uniform_int_distribution<int32_t> md(-((1 << 30) - 1), (1 << 30) - 1), sd(-31, 31);
+  w->assign(size_t{n} * r, 0);
+  for (int16_t& v : *w) v = static_cast<int16_t>(extreme ? kCompressedWeightOne : wd(*rng));
+  for (int ch = 0; ch < 3; ++ch) {
+    for (uint32_t j = 0; j < r; ++j) {
+      m->k[ch * r + j] = static_cast<int16_t>(extreme ? (ch == 1 ? -limit : limit) : kd(*rng));
+    }
+    m->mean[ch] = extreme ? (ch == 1 ? -((1 << 30) - 1) : (1 << 30) - 1) : md(*rng);
+    m->shift[ch] = extreme ? 0 : sd(*rng);
+    if (!extreme && (*rng)() % 4 != 0 && m->shift[ch] < 0) m->shift[ch] = -m->shift[ch];
+  }
+}
+
+TEST(CompressedClusterTest, ScalarIsExactAndAvx2BitIdenticalOnEveryTail) {
+  std::mt19937 rng(5);
+  for (uint32_t r : {0u, 1u, 2u, 3u, 5u, 8u, 16u, 17u, 32u, 64u}) {
+    for (uint32_t n : {1u, 3u, 8u, 11u, 16u, 35u, 100u}) {
+      for (bool extreme : {false, true}) {
+        SCOPED_TRACE(testing::Message() << "r " << r << " n " << n << " extreme " << extreme);
+        std::vector<int16_t> w;
+        ClusterMultipliers m{};
+        Fill(&rng, n, r, extreme, &w, &m);
+        const bool vector_path = m.shift[0] >= 0 && m.shift[1] >= 0 && m.shift[2] >= 0;
+        const std::vector<int32_t> want = Reference(w, n, r, m);
+        std::vector<int32_t> scalar(size_t{n} * 3, 0x5A5A5A5A), any(size_t{n} * 3, 0x5A5A5A5A);
+        CompressedClusterScalarQ12(w.data(), n, r, m, scalar.data());
+        EXPECT_EQ(scalar, want);
+        CompressedClusterQ12(w.data(), n, r, m, any.data());
+        EXPECT_EQ(any, want);
+        if (__builtin_cpu_supports("avx2") && n >= 16 && vector_path) {
+          std::vector<int32_t> vec(size_t{n} * 3, 0x5A5A5A5A);
+          CompressedClusterAvx2Q12(w.data(), n, r, m, vec.data());
+          const size_t done = size_t{n - n % 16} * 3;
+          EXPECT_TRUE(std::equal(vec.begin(), vec.begin() + static_cast<long>(done), want.begin()));
+          EXPECT_EQ(vec[done < vec.size() ? done : 0], done < vec.size() ? 0x5A5A5A5A : want[0]);
+        }
+      }
+    }
+  }
+}
+
+TEST(CompressedClusterTest, MultipliersRoundWithTheLargestShiftUpToInt32Extremes) {
+  std::mt19937 rng(9);
+  for (uint32_t r : {1u, 4u, 16u, 64u}) {
+    const int32_t limit = CompressedMultiplierLimit(r);
+    EXPECT_LE(int64_t{r} * kCompressedWeightOne * limit, (int64_t{1} << 30) - 1);
+    EXPECT_LE(limit, kCompressedWeightOne);
+    for (int trial = 0; trial < 50; ++trial) {
+      const int bits = std::uniform_int_distribution<int>(0, 30)(rng);
+      std::uniform_int_distribution<int32_t> pd(-(1 << bits), 1 << bits);
+      std::vector<int32_t> projection(3 * (r + 1));
+      for (int32_t& p : projection) p = pd(rng);
+      ClusterMultipliers m{};
+      ClusterMultipliersQ12(projection.data(), r, &m);
+      for (int ch = 0; ch < 3; ++ch) {
+        EXPECT_EQ(m.mean[ch], projection[ch]);
+        const int s = m.shift[ch];
+        ASSERT_TRUE(s >= -31 && s <= 31);
+        double largest = 0;
+        for (uint32_t j = 0; j < r; ++j) {
+          const double exact = std::ldexp(projection[(1 + j) * 3 + ch], s) / kCompressedWeightOne;
+          EXPECT_LE(std::abs(m.k[ch * r + j]), limit);
+          EXPECT_LE(std::abs(m.k[ch * r + j] - exact), 0.5 + 1e-9) << "j " << j << " s " << s;
+          largest = std::max(largest, std::abs(exact));
+        }
+        // The largest shift: one more would pass the limit (or s is already 31).
+        if (s < 31) {
+          EXPECT_GT(std::round(2 * largest), limit);
+        }
+      }
+    }
+  }
+  // The extremes: int32's largest components take negative shifts and stay
+  // within half a step; a zero component takes the largest shift.
+  std::vector<int32_t> huge = {5, 6, 7, INT32_MAX, INT32_MIN, 0};
+  ClusterMultipliers m{};
+  ClusterMultipliersQ12(huge.data(), 1, &m);
+  for (int ch = 0; ch < 2; ++ch) {
+    EXPECT_LT(m.shift[ch], 0);
+    EXPECT_LE(std::abs(m.k[ch]), CompressedMultiplierLimit(1));
+    EXPECT_LE(std::abs(m.k[ch] - std::ldexp(huge[3 + ch], m.shift[ch]) / kCompressedWeightOne), 0.5);
+  }
+  EXPECT_EQ(m.shift[2], 31);
+  EXPECT_EQ(m.k[2], 0);
+}
+
+TEST(CompressedRecombineTest, MatchesTheFloat64ExpansionOfTheCompressedBasis) {
+  const int degree = 2, terms = ShTermCount(degree);
+  const uint32_t r = 5, counts[] = {20, 37, 16};
+  std::mt19937 rng(17);
+  BakeCompressedBasis cpca;
+  cpca.components = r;
+  cpca.cluster_start = {0};
+  for (uint32_t n : counts) cpca.cluster_start.push_back(cpca.cluster_start.back() + n);
+  const uint32_t receivers = cpca.cluster_start.back(), vectors = 3 * (r + 1);
+  std::uniform_int_distribution<int32_t> q16(-32767, 32767), wq(-kCompressedWeightOne, kCompressedWeightOne);
+  std::uniform_int_distribution<int32_t> mant(1 << 29, (1 << 30) - 1);
+  for (int i = 0; i < 3 * terms; ++i) cpca.vector_scale.push_back(QuantScale{mant(rng), -22});  // ~2^-22 per LSB
+  for (uint32_t i = 0; i < 3 * terms * vectors; ++i) cpca.vectors.push_back(static_cast<int16_t>(q16(rng)));
+  for (uint32_t i = 0; i < receivers * r; ++i) cpca.weights.push_back(static_cast<int16_t>(wq(rng)));
+  std::vector<int64_t> coef(static_cast<size_t>(terms));
+  for (int64_t& c : coef) c = int64_t{std::uniform_int_distribution<int>(-3000, 3000)(rng)} << 16;  // cd
+
+  std::vector<int32_t> k(3 * static_cast<size_t>(terms)), projection(CompressedProjectionValues(cpca));
+  std::vector<int64_t> scratch(64);
+  std::vector<int32_t> out(size_t{receivers} * 3);
+  RecombineCompressedQ12(cpca, terms, coef.data(), k.data(), scratch.data(), 64, projection.data(), out.data());
+
+  const auto value = [&](uint32_t vec, int t, int ch) {
+    const QuantScale s = cpca.vector_scale[static_cast<size_t>(t * 3 + ch)];
+    return cpca.vectors[(size_t{static_cast<uint32_t>(t)} * 3 * (r + 1) + vec) * 3 + static_cast<size_t>(ch)] *
+           std::ldexp(s.mantissa, s.exponent - 30);
+  };
+  double peak = 0, worst = 0;
+  for (uint32_t c = 0; c < 3; ++c) {
+    const uint32_t start = cpca.cluster_start[c], n = counts[c];
+    for (uint32_t i = 0; i < n; ++i) {
+      for (int ch = 0; ch < 3; ++ch) {
+        double want = 0;  // cd/m^2
+        for (int t = 0; t < terms; ++t) {
+          double v = value(c * (r + 1), t, ch);
+          for (uint32_t j = 0; j < r; ++j) {
+            v += cpca.weights[size_t{start} * r + size_t{j} * n + i] / double{kCompressedWeightOne} *
+                 value(c * (r + 1) + 1 + j, t, ch);
+          }
+          want += static_cast<double>(coef[static_cast<size_t>(t)] >> 16) * v;
+        }
+        const double got = out[size_t{start + i} * 3 + static_cast<size_t>(ch)] / 4096.0;
+        peak = std::max(peak, std::abs(want));
+        worst = std::max(worst, std::abs(got - want));
+      }
+    }
+  }
+  ASSERT_GT(peak, 1.0);
+  // Projection rounding (half a Q12 step per vector) and multiplier rounding
+  // (half a step of 2^-s per weight): well under 1e-3 of the peak.
+  EXPECT_LT(worst, 1e-3 * peak) << "worst " << worst << " cd/m^2 of peak " << peak;
+}
+
+}  // namespace
+}  // namespace relight
