@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "direct_aimed.h"
 #include "lid_table.h"
 #include "relight/bake/bake.h"
 #include "relight/base/fixed.h"
@@ -23,6 +24,7 @@ namespace relight {
 struct SetCache {
   std::vector<int32_t> light;   // vertices: direct + indirect; grids: indirect
   std::vector<int32_t> direct;  // grids of kExactDirect luminaires
+  DirectPoints direct_points;   // kExactDirect, axisymmetric LID: the aimed direct term
 };
 
 struct LuminaireRuntime {
