@@ -252,7 +252,9 @@ Status Daemon::Open(const DaemonConfig& config) {
     return Status(StatusCode::kInvalidArgument, "frame rate must be in 0.1..1000 frames/s");
   }
   m.period_us = static_cast<int64_t>(1e6 / config.fps + 0.5);
-  RELIGHT_RETURN_IF_ERROR(m.engine.Open(config.bake_path));
+  EngineOptions engine_options;
+  engine_options.threads = config.engine_threads;
+  RELIGHT_RETURN_IF_ERROR(m.engine.Open(config.bake_path, engine_options));
   hal::Patch p;
   RELIGHT_RETURN_IF_ERROR(m.LoadResolved(&p));
   const std::string script = config.replay_path.empty() ? p.replay_script : config.replay_path;

@@ -106,8 +106,8 @@ void AimedLoop(const DirectPoints& points, const AimedCall& k, const GammaTable&
       if (kLuminance) v = (e_q12 * rho_q32[static_cast<size_t>(r) * 3 + c] + (uint64_t{1} << 31)) >> 32;
       int64_t value = v > 0x7fffffffu ? 0x7fffffff : static_cast<int64_t>(v);
       if (kAddTo) {
-        value += dst[c];
-        value = value > 0x7fffffff ? 0x7fffffff : (value < -0x7fffffffLL - 1 ? -0x7fffffffLL - 1 : value);
+        value += dst[c];  // value >= 0, so only the top can be passed
+        value = value > 0x7fffffff ? 0x7fffffff : value;
       }
       dst[c] = static_cast<int32_t>(value);
     }

@@ -51,10 +51,11 @@ inline Bam GammaFromUQ60(const GammaTable& t, uint64_t u_q60) {
 // (so the square-root end of acos at 180 degrees is as fine as at 0).
 inline Bam GammaFromCosQ60(const GammaTable& t, int64_t cos_q60) {
   constexpr int64_t kOne = int64_t{1} << 60;
-  if (cos_q60 > kOne) cos_q60 = kOne;
-  if (cos_q60 < -kOne) cos_q60 = -kOne;
-  if (cos_q60 >= 0) return GammaFromUQ60(t, static_cast<uint64_t>(kOne - cos_q60));
-  return (Bam{1} << 31) - GammaFromUQ60(t, static_cast<uint64_t>(kOne + cos_q60));
+  const int64_t sign = cos_q60 >> 63;                // 0 or -1
+  const int64_t magnitude = (cos_q60 ^ sign) - sign;  // |cos|: cos_q60 > -2^63
+  const int64_t u = kOne - magnitude;
+  const Bam g = GammaFromUQ60(t, static_cast<uint64_t>(u < 0 ? 0 : u));
+  return sign != 0 ? (Bam{1} << 31) - g : g;
 }
 
 }  // namespace relight
