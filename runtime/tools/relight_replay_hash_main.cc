@@ -10,7 +10,7 @@
 //
 // stdout: "frame I t=SECONDS luminance=HASH rgb8=HASH" per frame, then a
 // summary line; stderr: the engine's Update() time (mean, p50, p99, max over
-// the frames) and threads, and the process's resident memory (for speed and
+// the frames), threads and CPU time, and the process's resident memory (for speed and
 // footprints, not part of the comparison: the hashes do not depend on --threads).
 #include <cerrno>
 #include <chrono>
@@ -20,6 +20,7 @@
 #include <cstdlib>
 #include <algorithm>
 #include <cstring>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -94,6 +95,16 @@ bool ParseArgs(int argc, char** argv, Args* args) {
 // binding today (to become the control stage's).
 bool ApplyReplayChange(relight::Engine& engine, const relight::ParamChange& change, std::string* error) {
   return relight::cli::ApplyChange(engine, change, error);
+}
+
+// CPU time of the whole process (every thread), microseconds: under load the
+// wall clock measures the machine's share, this the engine's work.
+// The calling thread's alone: with --threads 2 its share of the work, the
+// critical path of Update() on an otherwise idle machine.
+double CpuUs(clockid_t clock) {
+  timespec ts{};
+  clock_gettime(clock, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e6 + static_cast<double>(ts.tv_nsec) / 1e3;
 }
 
 bool WriteFile(const std::string& path, const void* data, size_t size) {
@@ -174,6 +185,7 @@ int main(int argc, char** argv) {
   uint64_t all_luminance = relight::cli::kFnv1a64Offset, all_rgb8 = relight::cli::kFnv1a64Offset;
   std::chrono::steady_clock::duration update_time{};
   std::vector<double> update_us(static_cast<size_t>(frames));
+  double cpu_us = 0, main_cpu_us = 0;
   for (int i = 0; i < frames; ++i) {
     const int64_t now_us = static_cast<int64_t>(i) * frame_us;
     size_t n;
@@ -187,9 +199,12 @@ int main(int argc, char** argv) {
         }
       }
     }
+    const double c0 = CpuUs(CLOCK_PROCESS_CPUTIME_ID), m0 = CpuUs(CLOCK_THREAD_CPUTIME_ID);
     const auto t0 = std::chrono::steady_clock::now();
     engine.Update();
     const auto took = std::chrono::steady_clock::now() - t0;
+    cpu_us += CpuUs(CLOCK_PROCESS_CPUTIME_ID) - c0;
+    main_cpu_us += CpuUs(CLOCK_THREAD_CPUTIME_ID) - m0;
     update_time += took;
     update_us[static_cast<size_t>(i)] = std::chrono::duration<double, std::micro>(took).count();
     const int32_t* luminance = engine.vertex_luminance();
@@ -213,8 +228,10 @@ int main(int argc, char** argv) {
   };
   std::fprintf(stderr,
                "relight-replay-hash: engine Update() %.1f us/frame mean over %d frames (p50 %.1f, p99 %.1f, "
-               "max %.1f us; %d threads); RSS %ld kB after Open, %ld kB at the end, peak %ld kB\n",
-               total_us / frames, frames, rank(50), rank(99), update_us.back(), engine.thread_count(),
+               "max %.1f us; %d threads; CPU %.1f us/frame, %.1f of it the calling thread's); RSS %ld kB after Open, "
+               "%ld kB at the end, peak %ld kB\n",
+               total_us / frames, frames, rank(50), rank(99), update_us.back(), engine.thread_count(), cpu_us / frames,
+               main_cpu_us / frames,
                rss_after_open_kb, ProcStatusKb("VmRSS"), ProcStatusKb("VmHWM"));
   return 0;
 }
