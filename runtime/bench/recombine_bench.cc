@@ -9,6 +9,9 @@
 //   BM_CompressedRecombineOverStream  a compressed basis recombined in compressed
 //                      form against a vectorised read of its bytes, with the
 //                      uncompressed path's ratio beside it (issue 13)
+//   BM_DirectTerm      the aimed direct term of one head over V vertices
+//                      (direct_aimed.h), counter per_vertex (seconds); BM_DirectTermFull
+//                      the full path (direct.h: root and atan2 per vertex)
 //
 // Report ratios within one run: Recombine / StreamRead at the same size, and
 // EngineDimmer / EngineMove. docs/performance.md has the figures and command.
@@ -17,12 +20,15 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <random>
 #include <vector>
 
 #include "compressed_recombine.h"
+#include "direct.h"
+#include "direct_aimed.h"
 #include "recombine.h"
 #include "relight/bake/bake.h"
 #include "relight/engine/engine.h"
@@ -312,6 +318,80 @@ void BM_EngineDimmer(benchmark::State& state) {
     benchmark::DoNotOptimize(engine.vertex_luminance());
   }
 }
+// V receivers on a 30 x 30 m floor under a head 6 m up, a wide beam aimed
+// somewhere new each iteration (as a chase does), luminance with albedo.
+struct DirectScene {
+  std::vector<int16_t> direction;
+  std::vector<uint32_t> geometry;
+  std::vector<uint32_t> rho;
+  std::vector<int64_t> lid;
+  relight::DirectReceivers rx;
+  relight::DirectPoints points;
+  std::vector<int32_t> out;
+  explicit DirectScene(uint32_t n) {
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> xy(-15.0, 15.0);
+    for (uint32_t i = 0; i < n; ++i) {
+      const double d[3] = {xy(rng), xy(rng), -6.0};
+      const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      for (double c : d) direction.push_back(static_cast<int16_t>(std::lround(c / len * 16384)));
+      geometry.push_back(static_cast<uint32_t>(6.0 / (len * len * len) * 4e9));
+    }
+    std::vector<uint16_t> albedo(static_cast<size_t>(n) * 3, 40000);
+    rho.resize(albedo.size());
+    relight::ReflectanceOverPiQ32(albedo.data(), static_cast<uint32_t>(albedo.size()), rho.data());
+    for (int i = 0; i <= 180; ++i) lid.push_back(static_cast<int64_t>(20000.0 * std::pow(std::cos(std::min(i, 89) * M_PI / 180), 8) * 65536));
+    rx = relight::DirectReceivers{direction.data(), geometry.data(), relight::QuantScale{1 << 29, -60}, n};
+    relight::PrepareDirectPoints(rx, &points);
+    out.assign(static_cast<size_t>(n) * 3, 0);
+  }
+};
+
+void AxisOf(int iteration, int32_t axis[3]) {
+  // A unit vector swept round the downward cone (Q1.30, from integers only).
+  const double a = iteration * 0.37, t = 0.2 + 0.5 * ((iteration * 7) % 10) / 10.0;
+  axis[0] = static_cast<int32_t>(std::lround(std::sin(t) * std::cos(a) * (1 << 30)));
+  axis[1] = static_cast<int32_t>(std::lround(std::sin(t) * std::sin(a) * (1 << 30)));
+  axis[2] = static_cast<int32_t>(std::lround(-std::cos(t) * (1 << 30)));
+}
+
+void SetPerVertex(benchmark::State& state, uint32_t n) {
+  // Seconds of CPU per vertex: printed as e.g. 4.2n (ns).
+  state.counters["per_vertex"] = benchmark::Counter(static_cast<double>(state.iterations()) * n,
+                                                    benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void BM_DirectTerm(benchmark::State& state) {
+  const uint32_t n = static_cast<uint32_t>(state.range(0));
+  DirectScene scene(n);
+  const relight::GammaTable& table = relight::SharedGammaTable();
+  int i = 0;
+  for (auto _ : state) {
+    int32_t axis[3];
+    AxisOf(i++, axis);
+    relight::DirectLightAimedQ12(scene.points, table, axis, scene.lid.data(), 180, scene.rho.data(),
+                                 relight::DirectStore::kWrite, scene.out.data());
+    benchmark::DoNotOptimize(scene.out.data());
+  }
+  SetPerVertex(state, n);
+}
+
+void BM_DirectTermFull(benchmark::State& state) {
+  const uint32_t n = static_cast<uint32_t>(state.range(0));
+  DirectScene scene(n);
+  int i = 0;
+  for (auto _ : state) {
+    int32_t axis[3];
+    AxisOf(i++, axis);
+    relight::DirectLightQ12(scene.rx, axis, scene.lid.data(), 180, scene.rho.data(),
+                            relight::DirectStore::kWrite, scene.out.data());
+    benchmark::DoNotOptimize(scene.out.data());
+  }
+  SetPerVertex(state, n);
+}
+
+BENCHMARK(BM_DirectTerm)->Arg(16384)->Arg(100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DirectTermFull)->Arg(16384)->Arg(100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_EngineMove)->Arg(16384)->Arg(100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_EngineDimmer)->Arg(16384)->Arg(100000)->Unit(benchmark::kMicrosecond);
 

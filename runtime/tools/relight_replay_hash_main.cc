@@ -9,15 +9,18 @@
 //   relight-replay-hash living_room.rlb fixtures/living_room.replay --fps 2 [--dump DIR]
 //
 // stdout: "frame I t=SECONDS luminance=HASH rgb8=HASH" per frame, then a
-// summary line; stderr: the engine's mean Update() time and the process's
-// resident memory (for footprints, not part of the comparison).
+// summary line; stderr: the engine's Update() time (mean, p50, p99, max over
+// the frames), threads and CPU time, and the process's resident memory (for speed and
+// footprints, not part of the comparison: the hashes do not depend on --threads).
 #include <cerrno>
 #include <chrono>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <cstring>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -33,8 +36,9 @@
 namespace {
 
 constexpr const char* kUsage =
-    "usage: relight-replay-hash BAKE SCRIPT [--fps F] [--white CD_M2] [--emitter SPEC]... [--dump DIR]\n"
+    "usage: relight-replay-hash BAKE SCRIPT [--fps F] [--threads N] [--white CD_M2] [--emitter SPEC]... [--dump DIR]\n"
     "  --fps F         frames per second of script time (default 2)\n"
+    "  --threads N     engine threads, 1..16 (default: RELIGHT_THREADS, else the cores, at most 2)\n"
     "  --white CD_M2   luminance shown as display white (default: the bake's)\n"
     "  --emitter SPEC  a surface emitter placed before the first frame, as relight-render's\n"
     "                  --emitter (SURFACE:L:x,y,z;x,y,z;x,y,z[;...]); repeatable\n"
@@ -45,6 +49,7 @@ constexpr const char* kUsage =
 struct Args {
   std::string bake_path, script_path, dump_dir;
   double fps = 2, white_cd_m2 = 0;
+  int threads = 0;
   std::vector<std::string> emitters;
 };
 
@@ -62,6 +67,14 @@ bool ParseArgs(int argc, char** argv, Args* args) {
         return false;
       }
       (a == "--fps" ? args->fps : args->white_cd_m2) = v;
+    } else if (a == "--threads" && has_value) {
+      char* end = nullptr;
+      const long v = std::strtol(argv[++i], &end, 10);
+      if (*end != '\0' || v < 1 || v > 16) {
+        std::fprintf(stderr, "relight-replay-hash: error: --threads wants 1..16, got '%s'\n", argv[i]);
+        return false;
+      }
+      args->threads = static_cast<int>(v);
     } else if (a == "--emitter" && has_value) {
       args->emitters.push_back(argv[++i]);
     } else if (a == "--dump" && has_value) {
@@ -77,6 +90,16 @@ bool ParseArgs(int argc, char** argv, Args* args) {
   args->bake_path = positional[0];
   args->script_path = positional[1];
   return true;
+}
+
+// CPU time of the whole process (every thread), microseconds: under load the
+// wall clock measures the machine's share, this the engine's work.
+// The calling thread's alone: with --threads 2 its share of the work, the
+// critical path of Update() on an otherwise idle machine.
+double CpuUs(clockid_t clock) {
+  timespec ts{};
+  clock_gettime(clock, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e6 + static_cast<double>(ts.tv_nsec) / 1e3;
 }
 
 bool WriteFile(const std::string& path, const void* data, size_t size) {
@@ -125,7 +148,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   relight::Engine engine;
-  if (relight::Status st = engine.Open(args.bake_path); !st.ok()) {
+  relight::EngineOptions options;
+  options.threads = args.threads;
+  if (relight::Status st = engine.Open(args.bake_path, options); !st.ok()) {
     std::fprintf(stderr, "relight-replay-hash: error: %s\n", st.ToString().c_str());
     return 1;
   }
@@ -159,6 +184,8 @@ int main(int argc, char** argv) {
   const int frames = static_cast<int>(plan.frames);  // <= kMaxReplayFrames
   uint64_t all_luminance = relight::cli::kFnv1a64Offset, all_rgb8 = relight::cli::kFnv1a64Offset;
   std::chrono::steady_clock::duration update_time{};
+  std::vector<double> update_us(static_cast<size_t>(frames));
+  double cpu_us = 0, main_cpu_us = 0;
   for (int i = 0; i < frames; ++i) {
     const int64_t now_us = static_cast<int64_t>(i) * frame_us;
     if (std::string error; !relight::cli::ApplyDueReplayChanges(source, args.script_path, now_us, engine, &changes,
@@ -166,9 +193,14 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "relight-replay-hash: error: %s\n", error.c_str());
       return 2;
     }
+    const double c0 = CpuUs(CLOCK_PROCESS_CPUTIME_ID), m0 = CpuUs(CLOCK_THREAD_CPUTIME_ID);
     const auto t0 = std::chrono::steady_clock::now();
     engine.Update();
-    update_time += std::chrono::steady_clock::now() - t0;
+    const auto took = std::chrono::steady_clock::now() - t0;
+    cpu_us += CpuUs(CLOCK_PROCESS_CPUTIME_ID) - c0;
+    main_cpu_us += CpuUs(CLOCK_THREAD_CPUTIME_ID) - m0;
+    update_time += took;
+    update_us[static_cast<size_t>(i)] = std::chrono::duration<double, std::micro>(took).count();
     const int32_t* luminance = engine.vertex_luminance().raw();
     relight::ToneMapRgb8(tone_map, engine.vertex_luminance(), rgb8.data());
     const uint64_t h_lum = relight::cli::HashInt32Le(luminance, uint64_t{vertices} * 3);
@@ -181,10 +213,19 @@ int main(int argc, char** argv) {
   }
   std::printf("frames %d vertices %u luminance=%016" PRIx64 " rgb8=%016" PRIx64 "\n", frames, vertices,
               all_luminance, all_rgb8);
-  const double update_us = std::chrono::duration<double, std::micro>(update_time).count();
+  const double total_us = std::chrono::duration<double, std::micro>(update_time).count();
+  // Nearest-rank percentiles over the frames.
+  std::sort(update_us.begin(), update_us.end());
+  const auto rank = [&](double p) {
+    const size_t k = static_cast<size_t>(std::ceil(p / 100.0 * static_cast<double>(frames)));
+    return update_us[k == 0 ? 0 : std::min(k, update_us.size()) - 1];
+  };
   std::fprintf(stderr,
-               "relight-replay-hash: engine Update() %.1f us/frame mean over %d frames; RSS %ld kB after Open, "
+               "relight-replay-hash: engine Update() %.1f us/frame mean over %d frames (p50 %.1f, p99 %.1f, "
+               "max %.1f us; %d threads; CPU %.1f us/frame, %.1f of it the calling thread's); RSS %ld kB after Open, "
                "%ld kB at the end, peak %ld kB\n",
-               update_us / frames, frames, rss_after_open_kb, ProcStatusKb("VmRSS"), ProcStatusKb("VmHWM"));
+               total_us / frames, frames, rank(50), rank(99), update_us.back(), engine.thread_count(), cpu_us / frames,
+               main_cpu_us / frames,
+               rss_after_open_kb, ProcStatusKb("VmRSS"), ProcStatusKb("VmHWM"));
   return 0;
 }

@@ -18,7 +18,8 @@ BakeFileId StatBakeFile(const std::string& path) {
   return id;
 }
 
-Status ReloadBake(const std::string& path, Engine* engine, BakeFileId* loaded, BakeReload* result) {
+Status ReloadBake(const std::string& path, Engine* engine, BakeFileId* loaded, BakeReload* result,
+                  const EngineOptions& options) {
   *result = BakeReload::kUnchanged;
   // Taken before reading: a file changing while it is read gets a new id
   // and is read again at the next SIGHUP.
@@ -40,7 +41,7 @@ Status ReloadBake(const std::string& path, Engine* engine, BakeFileId* loaded, B
   }
   std::vector<FixtureState> states;
   for (int i = 0; i < engine->luminaire_count(); ++i) states.push_back(engine->state(i));
-  RELIGHT_RETURN_IF_ERROR(engine->Open(std::move(bake)));
+  RELIGHT_RETURN_IF_ERROR(engine->Open(std::move(bake), options));
   for (int i = 0; i < engine->luminaire_count(); ++i) {
     const FixtureState& s = states[static_cast<size_t>(i)];
     // Each setter clamps to the new bake's ranges; a luminaire that lost its

@@ -39,7 +39,9 @@ enum class BakeReload { kUnchanged, kTaken };
 // kTaken is returned. kUnchanged: the file is the one loaded. An error
 // (kNotFound, kIoError, kCorrupt, kUnsupported from ReadBake;
 // kInvalidArgument for other luminaires) names the file and what is wrong;
-// the engine and `*loaded` are untouched.
-Status ReloadBake(const std::string& path, Engine* engine, BakeFileId* loaded, BakeReload* result);
+// the engine and `*loaded` are untouched. The new bake opens with `options`
+// (the ones the running bake was opened with).
+Status ReloadBake(const std::string& path, Engine* engine, BakeFileId* loaded, BakeReload* result,
+                  const EngineOptions& options = {});
 
 }  // namespace relight::daemon

@@ -199,7 +199,9 @@ struct Daemon::Impl {
   // (bake_reload.h); a bad one is refused and the running bake stays.
   void ReloadBakeFile() {
     BakeReload result = BakeReload::kUnchanged;
-    if (Status st = ReloadBake(config.bake_path, &engine, &bake_id, &result); !st.ok()) {
+    EngineOptions options;
+    options.threads = config.engine_threads;
+    if (Status st = ReloadBake(config.bake_path, &engine, &bake_id, &result, options); !st.ok()) {
       ++stats.reload_failures;
       Log(LogLevel::kError, "relightd: bake reload refused, keeping the running bake: %s", st.ToString().c_str());
       return;
@@ -321,7 +323,9 @@ Status Daemon::Open(const DaemonConfig& config) {
   }
   m.period_us = static_cast<int64_t>(1e6 / config.fps + 0.5);
   m.bake_id = StatBakeFile(config.bake_path);  // before reading: a change meanwhile is read again on SIGHUP
-  RELIGHT_RETURN_IF_ERROR(m.engine.Open(config.bake_path));
+  EngineOptions engine_options;
+  engine_options.threads = config.engine_threads;
+  RELIGHT_RETURN_IF_ERROR(m.engine.Open(config.bake_path, engine_options));
   hal::Patch p;
   RELIGHT_RETURN_IF_ERROR(m.LoadResolved(&p));
   const std::string script = config.replay_path.empty() ? p.replay_script : config.replay_path;

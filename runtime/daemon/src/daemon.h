@@ -62,6 +62,7 @@ struct DaemonConfig {
                               // followed the input; dmx_latency_bench --compare measures both)
   bool exit_when_replay_done = false;  // after the frame that shows the replay's (or DMX replay's) last change and fade
   int64_t max_frames = 0;     // 0: no limit
+  int engine_threads = 0;     // Engine::Update's threads (EngineOptions); 0: its default
   // Camera: the bake's, with any of these replacing its part.
   std::optional<std::array<float, 3>> camera_pos, camera_target;  // metres
   float fov_y_deg = 0;        // 0: the bake's

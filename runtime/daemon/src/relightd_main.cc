@@ -78,6 +78,9 @@ int main(int argc, char** argv) {
   app.add_option("--modbus-port", config.modbus_port,
                  "serve Modbus TCP on 127.0.0.1:PORT even without [modbus_tcp] in the patch (0: any free port)")
       ->check(CLI::Range(0, 65535));
+  app.add_option("--threads", config.engine_threads,
+                 "engine threads, 1..16 (default: RELIGHT_THREADS, else the cores, at most 2)")
+      ->check(CLI::Range(1, 16));
   app.add_option("--fps", config.fps, "frames per second")->capture_default_str()->check(CLI::Range(0.1, 1000.0));
   app.add_option("--width", config.width, "frame width, pixels")->capture_default_str()->check(CLI::Range(16, 8192));
   app.add_option("--height", config.height, "frame height, pixels")->capture_default_str()->check(CLI::Range(16, 8192));

@@ -8,6 +8,7 @@
 
 #include "fixture_frame.h"
 #include "lid_table.h"
+#include "relight/bake/bake.h"
 #include "relight/base/fixed.h"
 
 namespace relight {
@@ -22,6 +23,16 @@ struct DirectReceivers {
   QuantScale geometry_scale;               // m^-2 per LSB
   uint32_t count = 0;
 };
+
+// A luminaire's bake receivers on one set as a DirectReceivers view.
+inline DirectReceivers DirectReceiversOf(const BakeLightReceivers& rx, uint32_t count) {
+  DirectReceivers d;
+  d.direction_q14 = rx.direction.data();
+  d.geometry = rx.geometry.data();
+  d.geometry_scale = rx.geometry_scale;
+  d.count = count;
+  return d;
+}
 
 // rho_c / pi per vertex and channel, Q0.32, from the bake's albedo
 // (65535 = 1): the Lambertian factor from illuminance to luminance.

@@ -5,7 +5,8 @@
 //   Update: dirty, lit luminaires -> a pending zoom's LID samples and
 //           weights (zoom.h, ApplyZoom) -> RecomputeLuminaireCacheQ12
 //           (luminaire_cache.h) -> RemixQ12 (remix.h) per dimmer and colour
-//           -> + run-time surface emitters (surface_emitters.h).
+//           -> + run-time surface emitters (surface_emitters.h); the rebuilds
+//           and the remix on the worker threads (engine_threads.h).
 //
 // A dirty luminaire whose gains are all zero (dimmer or colour at 0) is
 // rebuilt when it is next lit, not before: moving a fixture "in black" costs
@@ -21,6 +22,7 @@
 #include <vector>
 
 #include "console_aim.h"
+#include "engine_threads.h"
 #include "fixture_frame.h"
 #include "luminaire.h"
 #include "luminaire_cache.h"
@@ -44,11 +46,14 @@ struct Engine::Impl {
   int last_luminaires = 0;
   int last_terms = 0;
   int last_emitters = 0;
+  EngineThreads threads;  // last: its workers are joined first
 
-  Status Allocate() {
+  Status Allocate(const EngineOptions& options) {
     RELIGHT_RETURN_IF_ERROR(SetUpLuminaires(bake, &lums, &work));
     SizeOutputs(bake, &out, &mix);
-    return emitters.Open(bake);
+    RELIGHT_RETURN_IF_ERROR(emitters.Open(bake));
+    StartEngineThreads(options.threads, work, lums.size(), &threads);
+    return Status::Ok();
   }
   void ApplyPendingZoom(size_t index) {
     if (lums[index].zoom_pending) {
@@ -78,21 +83,17 @@ bool Lit(const LuminaireRuntime& lum) {
 }  // namespace
 
 void Engine::Impl::Update() {
-  last_luminaires = 0;
-  last_terms = 0;
+  threads.rebuild_count = 0;
   for (size_t i = 0; i < lums.size(); ++i) {
-    if (!lums[i].dirty || !Lit(lums[i])) continue;
-    ApplyPendingZoom(i);
-    last_terms += RecomputeLuminaireCacheQ12(bake, bake.luminaires[i], &work, &lums[i]);
-    lums[i].dirty = false;
-    ++last_luminaires;
-    remix = true;
+    if (lums[i].dirty && Lit(lums[i])) threads.rebuild[threads.rebuild_count++] = static_cast<uint32_t>(i);
   }
+  last_luminaires = static_cast<int>(threads.rebuild_count);
+  last_terms = RebuildLuminaires(&bake, &lums, &work, &threads);  // on all threads
+  if (last_luminaires > 0) remix = true;
   last_emitters = emitters.SolvePending();
   if (last_emitters > 0) remix = true;
   if (remix) {
-    RemixQ12(bake, lums, mix.data(), work.scratch.data(),
-             static_cast<uint32_t>(work.scratch.size()), &out);
+    RemixOnThreads(bake, lums, &work, mix.data(), &threads, &out);
     emitters.AddTo(out.vertex.data());
   }
   remix = false;
@@ -101,23 +102,29 @@ void Engine::Impl::Update() {
 Engine::Engine() = default;
 Engine::~Engine() = default;
 
-Status Engine::Open(const std::string& bake_path) {
+Status Engine::Open(const std::string& bake_path) { return Open(bake_path, EngineOptions{}); }
+
+Status Engine::Open(Bake bake) { return Open(std::move(bake), EngineOptions{}); }
+
+Status Engine::Open(const std::string& bake_path, const EngineOptions& options) {
   Bake bake;
   RELIGHT_RETURN_IF_ERROR(ReadBake(bake_path, &bake));
-  return Open(std::move(bake));
+  return Open(std::move(bake), options);
 }
 
-Status Engine::Open(Bake bake) {
+Status Engine::Open(Bake bake, const EngineOptions& options) {
   RELIGHT_RETURN_IF_ERROR(ValidateBake(bake));
   std::unique_ptr<Impl> impl(new Impl);
   impl->bake = std::move(bake);
-  RELIGHT_RETURN_IF_ERROR(impl->Allocate());
+  RELIGHT_RETURN_IF_ERROR(impl->Allocate(options));
   impl->Update();
   impl_ = std::move(impl);
   return Status::Ok();
 }
 
 bool Engine::is_open() const { return impl_ != nullptr; }
+
+int Engine::thread_count() const { return impl_ ? impl_->threads.pool.threads() : 0; }
 
 const Bake& Engine::bake() const {
   static const Bake kEmpty;

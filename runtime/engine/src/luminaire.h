@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "direct_aimed.h"
 #include "lid_table.h"
 #include "relight/bake/bake.h"
 #include "relight/base/fixed.h"
@@ -23,6 +24,7 @@ namespace relight {
 struct SetCache {
   std::vector<int32_t> light;   // vertices: direct + indirect; grids: indirect
   std::vector<int32_t> direct;  // grids of kExactDirect luminaires
+  DirectPoints direct_points;   // kExactDirect, axisymmetric LID: the aimed direct term
 };
 
 struct LuminaireRuntime {
@@ -49,7 +51,9 @@ struct LuminaireRuntime {
 // Scratch shared by every luminaire's recomputation, sized for the largest.
 struct CacheWorkspace {
   ShTables sh;
-  std::unique_ptr<ShRotationTables> rotation;  // only with a (C, gamma) LID
+  // Only with a (C, gamma) LID; read-only after Open, shared by the
+  // per-thread copies of the workspace (engine_threads.h).
+  std::shared_ptr<ShRotationTables> rotation;
   std::vector<int32_t> rotation_q30;           // band matrices, kShRotationValues
   std::vector<int64_t> alm_q30, coef_q16;      // per term
   std::vector<int32_t> k;                      // per term and channel

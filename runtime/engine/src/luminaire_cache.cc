@@ -3,6 +3,7 @@
 
 #include "compressed_recombine.h"
 #include "direct.h"
+#include "direct_aimed.h"
 #include "fixture_frame.h"
 #include "recombine.h"
 #include "weights.h"
@@ -52,19 +53,15 @@ int RecomputeLuminaireCacheQ12(const Bake& bake, const BakeLuminaire& b, CacheWo
                                               cache.light.data()));
     }
     if (b.direct_mode != DirectMode::kExactDirect) continue;
-    DirectReceivers direct;
-    direct.direction_q14 = rx.direction.data();
-    direct.geometry = rx.geometry.data();
-    direct.geometry_scale = rx.geometry_scale;
-    direct.count = count;
     // Vertices: luminance added to the indirect; grids: illuminance apart.
     const uint32_t* rho = s == 0 ? work->reflectance_over_pi_q32.data() : nullptr;
     const DirectStore store = s == 0 ? DirectStore::kAdd : DirectStore::kWrite;
     int32_t* out = s == 0 ? cache.light.data() : cache.direct.data();
     if (l.has_table) {
-      DirectLightTableQ12(direct, frame, l.table, rho, store, out);
+      DirectLightTableQ12(DirectReceiversOf(rx, count), frame, l.table, rho, store, out);
     } else {
-      DirectLightQ12(direct, axis_q30, b.lid.candela.data(), l.lid_m, rho, store, out);
+      DirectLightAimedQ12(cache.direct_points, SharedGammaTable(), axis_q30, b.lid.candela.data(),
+                          l.lid_m, rho, store, out);
     }
   }
   return passes;

@@ -4,6 +4,7 @@
 
 #include "compressed_recombine.h"
 #include "direct.h"
+#include "gamma_table.h"
 #include "luminaire.h"
 #include "recombine.h"
 #include "relight/bake/bake_limits.h"
@@ -93,6 +94,7 @@ static size_t MaxCompressedProjection(const Bake& bake) {
 Status SetUpLuminaires(const Bake& bake, std::vector<LuminaireRuntime>* lums,
                        CacheWorkspace* work) {
   InitShTables(&work->sh);
+  (void)SharedGammaTable();  // built here, not in an Update()
   const uint32_t sets = bake.receiver_set_count();
   uint32_t max_count = 0;
   for (uint32_t s = 0; s < sets; ++s) {
@@ -122,6 +124,10 @@ Status SetUpLuminaires(const Bake& bake, std::vector<LuminaireRuntime>* lums,
       const size_t n = static_cast<size_t>(bake.receiver_count(s)) * 3;
       l.sets[s].light.assign(n, 0);
       if (s > 0 && b.direct_mode == DirectMode::kExactDirect) l.sets[s].direct.assign(n, 0);
+      if (b.direct_mode == DirectMode::kExactDirect && !l.has_table) {
+        PrepareDirectPoints(DirectReceiversOf(b.receivers[s], bake.receiver_count(s)),
+                            &l.sets[s].direct_points);
+      }
     }
   }
   work->compressed_projection.assign(MaxCompressedProjection(bake), 0);

@@ -30,4 +30,12 @@ void SizeOutputs(const Bake& bake, EngineOutputs* out, std::vector<MixSource>* m
 void RemixQ12(const Bake& bake, const std::vector<LuminaireRuntime>& lums, MixSource* mix,
               int64_t* scratch, uint32_t scratch_len, EngineOutputs* out);
 
+// The same for slice `part` of `parts` of every receiver set (receivers
+// [n part / parts, n (part + 1) / parts)): each receiver's value depends on
+// that receiver alone, so slices run on different threads (each with its
+// own mix and scratch) give the outputs of one RemixQ12, bit for bit.
+void RemixSliceQ12(const Bake& bake, const std::vector<LuminaireRuntime>& lums, uint32_t part,
+                   uint32_t parts, MixSource* mix, int64_t* scratch, uint32_t scratch_len,
+                   EngineOutputs* out);
+
 }  // namespace relight

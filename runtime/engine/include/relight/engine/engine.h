@@ -12,8 +12,14 @@
 // luminaire's cache (its SH terms and direct term); a dimmer or colour change
 // re-sums the caches, O(vertices x luminaires), no SH term touched.
 //
-// Thread safety: none; one thread drives an Engine. Errors are Status values;
-// no call throws.
+// Threads: Open starts a fixed pool of worker threads (EngineOptions), and
+// Update() spreads its work over them and the calling thread, returning when
+// all are done: the luminaires that changed are rebuilt in parallel and the
+// remix is split by receiver ranges, with outputs bit for bit those of one
+// thread. The pool stops in ~Engine (or the next Open).
+// Thread safety: the Engine object itself is not thread-safe; one thread
+// drives it (setters, Update, outputs), and no output may be read while
+// Update() runs. Errors are Status values; no call throws.
 #pragma once
 
 #include <cstdint>
@@ -29,6 +35,14 @@
 
 namespace relight {
 
+struct EngineOptions {
+  // Threads Update() uses, the caller's included: 1 .. 16; 0 picks
+  // RELIGHT_THREADS from the environment if set, else the hardware's,
+  // capped at 2. Each thread beyond the first costs a copy of the
+  // engine's scratch (a few times the largest receiver set x 3 x 8 bytes).
+  int threads = 0;
+};
+
 class Engine {
  public:
   Engine();
@@ -41,7 +55,11 @@ class Engine {
   // ReadBake(). On error the engine stays closed (or keeps its previous bake).
   Status Open(const std::string& bake_path);
   Status Open(Bake bake);
+  Status Open(const std::string& bake_path, const EngineOptions& options);
+  Status Open(Bake bake, const EngineOptions& options);
   bool is_open() const;
+  // Threads Update() runs on (the caller's included); 0 when closed.
+  int thread_count() const;
 
   const Bake& bake() const;
   int luminaire_count() const;

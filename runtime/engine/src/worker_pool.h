@@ -1,0 +1,55 @@
+// A fixed pool of worker threads for Engine::Update (issue 13 "both
+// cores"): started once at Engine::Open, joined in ~Engine. Run() hands the
+// same task to every thread (the caller is thread 0) and returns when all
+// have finished it; the task splits its work by the thread index, so the
+// result never depends on which thread ran what. Run allocates nothing (a
+// mutex, two condition variables and a generation counter). Not reentrant:
+// one thread (the engine's owner) calls Run.
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace relight {
+
+// Threads Engine uses when asked for 0: RELIGHT_THREADS if set (1 ..
+// kMaxEngineThreads), else the hardware's, capped at 2 (the target box's
+// cores; the renderer and the inputs need the rest of a bigger one).
+inline constexpr int kMaxEngineThreads = 16;
+int DefaultEngineThreads();
+
+class WorkerPool {
+ public:
+  using Task = void (*)(void* context, int thread);
+
+  WorkerPool() = default;
+  ~WorkerPool();
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+
+  // Starts threads - 1 workers (threads clamped to 1 .. kMaxEngineThreads).
+  // Open time only: allocates the threads.
+  void Start(int threads);
+  int threads() const { return threads_; }
+
+  // task(context, t) for every t in 0 .. threads() - 1, t = 0 on the caller.
+  void Run(Task task, void* context);
+
+ private:
+  void WorkerMain(int index);
+
+  std::mutex mu_;
+  std::condition_variable start_cv_, done_cv_;
+  uint64_t generation_ = 0;  // bumped by each Run
+  int running_ = 0;          // workers still on the current task
+  bool stop_ = false;
+  Task task_ = nullptr;
+  void* context_ = nullptr;
+  int threads_ = 1;
+  std::vector<std::thread> workers_;
+};
+
+}  // namespace relight
