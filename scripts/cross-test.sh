@@ -61,7 +61,12 @@ cmake --build "$CROSS_BUILD" -j"$JOBS"
 # BakeIoTest.SmoothBasisCompressionFigures measures zstd ratios of a
 # float64-synthesised basis: minutes under qemu (softfloat cos/exp) and
 # nothing target-specific, so it runs on the host only.
-(cd "$CROSS_BUILD" && ctest --output-on-failure -j"$JOBS" -E 'SmoothBasisCompressionFigures')
+# The engine runs on one thread under qemu: with its two-thread pool, qemu-user
+# 7.2 ran EngineNoAllocation.* past 900 s where one thread takes 12 s (root
+# cause not found; the pool's threads are proven bit-identical to one thread
+# on x86-64 by engine_threads_test, and the comparison below checks the host's
+# two threads against aarch64's one).
+(cd "$CROSS_BUILD" && RELIGHT_THREADS=1 ctest --output-on-failure -j"$JOBS" -E 'SmoothBasisCompressionFigures')
 
 # --- bit-exact: x86-64 AVX2, x86-64 scalar, aarch64.
 echo "cross-test: built and tested in $(( $(date +%s) - start )) s; comparing frames"
