@@ -45,7 +45,7 @@ class DistributedSession : public WorkShare {
 
  private:
   int rank_ = 0, ranks_ = 1, local_ranks_ = 1;
-  bool initialised_ = false;
+  [[maybe_unused]] bool initialised_ = false;  // used by the MPI build only
 };
 
 // Which rank bakes each luminaire: by SH terms, largest first, each to the
