@@ -18,6 +18,7 @@
 
 #include "relight/base/fixed_ops.h"
 #include "surface_emitter_frame.h"
+#include "surface_emitter_gather_avx2.h"
 
 namespace relight {
 namespace {
@@ -29,6 +30,42 @@ int64_t GradientTerm(int64_t gu, int64_t gv, const int32_t* uv_q16) {
 }
 
 constexpr int kViewShift = kExitanceFracBits - kGatherFracBits;
+
+// The scalar gathers (surface_emitter_gather_avx2.h has the contract).
+void GatherLeaf(const EmitterGatherEntry* e, uint32_t count, const int32_t* view, int64_t a[3]) {
+  int64_t a0 = 0, a1 = 0, a2 = 0;
+  for (uint32_t i = 0; i < count; ++i) {
+    const int32_t* src = &view[4 * size_t{e[i].source}];
+    const int64_t f = e[i].f;
+    a0 += f * src[0];
+    a1 += f * src[1];
+    a2 += f * src[2];
+  }
+  a[0] = a0;
+  a[1] = a1;
+  a[2] = a2;
+}
+
+void GatherInner(const EmitterGatherEntry* e, const int32_t* g, uint32_t count, const int32_t* view, int64_t a[3],
+                 int64_t u[3], int64_t v[3]) {
+  int64_t a0 = 0, a1 = 0, a2 = 0, u0 = 0, u1 = 0, u2 = 0, v0 = 0, v1 = 0, v2 = 0;
+  for (uint32_t i = 0; i < count; ++i) {
+    const int32_t* src = &view[4 * size_t{e[i].source}];
+    const int64_t f = e[i].f, du = g[2 * i], dv = g[2 * i + 1];
+    a0 += f * src[0];
+    a1 += f * src[1];
+    a2 += f * src[2];
+    u0 += du * src[0];
+    u1 += du * src[1];
+    u2 += du * src[2];
+    v0 += dv * src[0];
+    v1 += dv * src[1];
+    v2 += dv * src[2];
+  }
+  a[0] = a0, a[1] = a1, a[2] = a2;
+  u[0] = u0, u[1] = u1, u[2] = u2;
+  v[0] = v0, v[1] = v1, v[2] = v2;
+}
 
 }  // namespace
 
@@ -56,12 +93,12 @@ Status HierarchySolveQ32::Init(const Bake& bake) {
     gradient_offsets_[k + 1] = gradient_offsets_[k] + (h.leaf(k) ? 0 : gather_offsets_[k + 1]);
     gather_offsets_[k + 1] += gather_offsets_[k];
   }
-  gather_.assign(gather_offsets_[n], Entry{0, 0});
+  gather_.assign(gather_offsets_[n], EmitterGatherEntry{0, 0});
   gradient_.assign(size_t{gradient_offsets_[n]} * 2, 0);
   std::vector<uint32_t> fill(n, 0);
   const auto add = [&](uint32_t to, uint32_t from, uint32_t f, const int32_t* g) {
     const uint32_t i = fill[to]++;
-    gather_[gather_offsets_[to] + i] = Entry{from, f};
+    gather_[gather_offsets_[to] + i] = EmitterGatherEntry{from, f};
     if (h.leaf(to)) return;  // a leaf's links carry no gradient
     gradient_[2 * size_t{gradient_offsets_[to] + i}] = g[0];
     gradient_[2 * size_t{gradient_offsets_[to] + i} + 1] = g[1];
@@ -72,9 +109,13 @@ Status HierarchySolveQ32::Init(const Bake& bake) {
   }
   // The largest sum a gather can multiply the view by (see the top comment).
   uint64_t row_max = 1;
+  bool vector_ok = true;
   for (uint32_t k = 0; k < n; ++k) {
     uint64_t f = 0, du = 0, dv = 0;
-    for (uint32_t e = gather_offsets_[k]; e < gather_offsets_[k + 1]; ++e) f += gather_[e].f;
+    for (uint32_t e = gather_offsets_[k]; e < gather_offsets_[k + 1]; ++e) {
+      f += gather_[e].f;
+      if (gather_[e].f >= (uint32_t{1} << 31)) vector_ok = false;  // _mm256_mul_epi32 is signed
+    }
     for (uint32_t e = 2 * gradient_offsets_[k]; e < 2 * gradient_offsets_[k + 1]; e += 2) {
       du += static_cast<uint64_t>(gradient_[e] < 0 ? -int64_t{gradient_[e]} : gradient_[e]);
       dv += static_cast<uint64_t>(gradient_[e + 1] < 0 ? -int64_t{gradient_[e + 1]} : gradient_[e + 1]);
@@ -84,6 +125,7 @@ Status HierarchySolveQ32::Init(const Bake& bake) {
   }
   const uint64_t limit = static_cast<uint64_t>(INT64_MAX) / row_max;
   view_limit_ = limit >= uint64_t{INT32_MAX} ? INT32_MAX : static_cast<int32_t>(limit);
+  vector_ = vector_ok && EmitterGatherHasAvx2();
 
   child_weight_q32_.assign(n, 0);
   centre_uv_q16_.assign(size_t{n} * 2, 0);
@@ -121,7 +163,7 @@ Status HierarchySolveQ32::Init(const Bake& bake) {
   g0_.assign(size_t{n} * 3, 0);
   gu_.assign(size_t{n} * 3, 0);
   gv_.assign(size_t{n} * 3, 0);
-  for (std::vector<int32_t>& v : view_) v.assign(size_t{n} * 3, 0);
+  for (std::vector<int32_t>& v : view_) v.assign(size_t{n} * 4, 0);
   return Status::Ok();
 }
 
@@ -140,7 +182,7 @@ void HierarchySolveQ32::Pull(uint32_t begin, uint32_t end, int64_t* b, int32_t* 
       for (int ch = 0; ch < 3; ++ch) sum[ch] += static_cast<Int128>(child_weight_q32_[c]) * b[3 * size_t{c} + ch];
     for (int ch = 0; ch < 3; ++ch) {
       b[3 * size_t{k} + ch] = RoundShiftSat64(sum[ch], -32);
-      view[3 * size_t{k} + ch] = ToView(b[3 * size_t{k} + ch]);
+      view[4 * size_t{k} + ch] = ToView(b[3 * size_t{k} + ch]);
     }
   }
 }
@@ -153,42 +195,30 @@ void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
   for (uint32_t r = block_run_[block]; r < block_run_[block + 1]; ++r) {
     const uint32_t begin = run_begin_[r], end = run_begin_[r + 1];
     for (uint32_t k = begin; k < end; ++k) {  // gather
-      const Entry* e = &gather_[gather_offsets_[k]];
+      const EmitterGatherEntry* e = &gather_[gather_offsets_[k]];
       const uint32_t count = gather_offsets_[k + 1] - gather_offsets_[k];
       int64_t* g0 = &g0_[3 * size_t{k}];
       int64_t* gu = &gu_[3 * size_t{k}];
       int64_t* gv = &gv_[3 * size_t{k}];
-      int64_t a0 = 0, a1 = 0, a2 = 0;
+      int64_t a[3], u[3], v[3];
       if (h.leaf(k)) {  // a leaf's links carry no gradient
-        for (uint32_t i = 0; i < count; ++i) {
-          const int32_t* src = &view[3 * size_t{e[i].source}];
-          const int64_t f = e[i].f;
-          a0 += f * src[0];
-          a1 += f * src[1];
-          a2 += f * src[2];
+        if (vector_) {
+          GatherLeafAvx2(e, count, view, a);
+        } else {
+          GatherLeaf(e, count, view, a);
         }
-        g0[0] = RoundShiftSat64(a0, -kGatherFracBits);
-        g0[1] = RoundShiftSat64(a1, -kGatherFracBits);
-        g0[2] = RoundShiftSat64(a2, -kGatherFracBits);
-        gu[0] = gu[1] = gu[2] = gv[0] = gv[1] = gv[2] = 0;
+        for (int ch = 0; ch < 3; ++ch) {
+          g0[ch] = RoundShiftSat64(a[ch], -kGatherFracBits);
+          gu[ch] = gv[ch] = 0;
+        }
         continue;
       }
       const int32_t* g = &gradient_[2 * size_t{gradient_offsets_[k]}];
-      int64_t u0 = 0, u1 = 0, u2 = 0, v0 = 0, v1 = 0, v2 = 0;
-      for (uint32_t i = 0; i < count; ++i) {
-        const int32_t* src = &view[3 * size_t{e[i].source}];
-        const int64_t f = e[i].f, du = g[2 * i], dv = g[2 * i + 1];
-        a0 += f * src[0];
-        a1 += f * src[1];
-        a2 += f * src[2];
-        u0 += du * src[0];
-        u1 += du * src[1];
-        u2 += du * src[2];
-        v0 += dv * src[0];
-        v1 += dv * src[1];
-        v2 += dv * src[2];
+      if (vector_) {
+        GatherInnerAvx2(e, g, count, view, a, u, v);
+      } else {
+        GatherInner(e, g, count, view, a, u, v);
       }
-      const int64_t a[3] = {a0, a1, a2}, u[3] = {u0, u1, u2}, v[3] = {v0, v1, v2};
       constexpr int kGradientShift = kBakeGradientFracBits + kGatherFracBits - kExitanceFracBits;
       for (int ch = 0; ch < 3; ++ch) {
         gu[ch] = RoundShiftSat64(u[ch], -kGradientShift);
@@ -221,7 +251,7 @@ void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
         if (d > change) change = d;
         if (updated > peak) peak = updated;
         b[i] = updated;
-        view[i] = ToView(updated);
+        view[4 * size_t{k} + ch] = ToView(updated);
       }
     }
     Pull(begin, end, b, view);
@@ -235,9 +265,10 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra
   const uint32_t n = node_count();
   const size_t runs = run_begin_.size() - 1;
   for (size_t r = 0; r < runs; ++r) Pull(run_begin_[r], run_begin_[r + 1], b, view_[0].data());
-  for (size_t i = 0; i < size_t{n} * 3; ++i) view_[0][i] = ToView(b[i]);
+  for (uint32_t k = 0; k < n; ++k)
+    for (int c = 0; c < 3; ++c) view_[0][4 * size_t{k} + c] = ToView(b[3 * size_t{k} + c]);
   for (int k = 1; k < kEmitterSolveBlocks; ++k)
-    std::memcpy(view_[k].data(), view_[0].data(), size_t{n} * 3 * sizeof(int32_t));
+    std::memcpy(view_[k].data(), view_[0].data(), size_t{n} * 4 * sizeof(int32_t));
   Sweep sweep{this, emitted_q32, extra_irradiance_q32, b, {}, {}};
   const auto task = [](void* context, int thread) {
     Sweep* s = static_cast<Sweep*>(context);
@@ -256,8 +287,8 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra
     }
     // Every block's nodes into every other block's view, for the next sweep.
     for (int from = 0; from < kEmitterSolveBlocks; ++from) {
-      const size_t lo = 3 * size_t{run_begin_[block_run_[from]]};
-      const size_t hi = 3 * size_t{run_begin_[block_run_[from + 1]]};
+      const size_t lo = 4 * size_t{run_begin_[block_run_[from]]};
+      const size_t hi = 4 * size_t{run_begin_[block_run_[from + 1]]};
       for (int to = 0; to < kEmitterSolveBlocks; ++to)
         if (to != from) std::memcpy(&view_[to][lo], &view_[from][lo], (hi - lo) * sizeof(int32_t));
     }

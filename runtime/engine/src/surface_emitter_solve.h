@@ -24,6 +24,7 @@
 
 #include "relight/bake/bake.h"
 #include "relight/base/status.h"
+#include "surface_emitter_gather_avx2.h"
 #include "worker_pool.h"
 
 namespace relight {
@@ -60,15 +61,13 @@ class HierarchySolveQ32 {
   // `pool` may be null (one thread). Returns the sweeps it took.
   int SolveRgb(const int64_t* emitted_q32, const int64_t* extra_irradiance_q32, int64_t* exitance_q32,
                WorkerPool* pool);
-  // exitance_q32 as int32 Q24 (kGatherFracBits), 3 per node, as the last
+  // exitance_q32 as int32 Q24 (kGatherFracBits), 4 per node (channels 0-2
+  // and a zero), as the last
   // SolveRgb left it: what LeavesToVertices reads.
   const int32_t* exitance_q24() const { return view_[0].data(); }
   uint32_t node_count() const { return static_cast<uint32_t>(child_weight_q32_.size()); }
 
  private:
-  struct Entry {
-    uint32_t source, f;  // f UQ0.32
-  };
   struct Sweep;
   void SweepBlock(Sweep* sweep, int block);
   void Pull(uint32_t begin, uint32_t end, int64_t* b, int32_t* view) const;
@@ -79,13 +78,14 @@ class HierarchySolveQ32 {
   // an inner node's gradients (Q8.23 per metre, u and v) are at
   // gradient_[2 (gradient_offsets_[k] + i)] for its i-th entry.
   std::vector<uint32_t> gather_offsets_, gradient_offsets_;
-  std::vector<Entry> gather_;
+  std::vector<EmitterGatherEntry> gather_;
   std::vector<int32_t> gradient_;
   std::vector<uint64_t> child_weight_q32_;  // area over the parent's, 2^32 = all
   std::vector<int32_t> centre_uv_q16_;      // 2 per node, surface frame, m
   std::vector<uint64_t> rho_q32_;           // 3 per node (leaves), 2^32 = 1
   std::vector<uint32_t> run_begin_;         // first node of each tree, then node_count
   uint32_t block_run_[kEmitterSolveBlocks + 1] = {};  // runs of each block
+  bool vector_ = false;                     // the AVX2 gathers (Init)
   int threads_ = 1;                         // of the current SolveRgb
   int32_t view_limit_ = 0;                  // |exitance| read by a gather, Q24 (Init)
   std::vector<int64_t> g0_, gu_, gv_;       // gathered a + b u + c v, Q32, 3 per node

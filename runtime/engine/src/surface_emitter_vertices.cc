@@ -44,7 +44,7 @@ void LeavesToVerticesQ24(const VertexLeafWeights& w, uint32_t vertex_count, cons
     int64_t s0 = 0, s1 = 0, s2 = 0;
     for (uint32_t i = w.offsets[v]; i < w.offsets[v + 1]; ++i) {
       const int64_t weight = w.weight_q32[i];
-      const int32_t* x = &node_q24[3 * size_t{w.leaf[i]}];
+      const int32_t* x = &node_q24[4 * size_t{w.leaf[i]}];
       s0 += weight * x[0];
       s1 += weight * x[1];
       s2 += weight * x[2];

@@ -21,7 +21,8 @@ struct VertexLeafWeights {
 // Open time (allocates). A vertex of no leaf gets no entries (value 0).
 void MakeVertexLeafWeights(const BakeHierarchy& h, uint32_t vertex_count, VertexLeafWeights* w);
 
-// out[3 v + c] = sum of weight x node_q24[3 leaf + c] (Q24 in, Q24 out).
+// out[3 v + c] = sum of weight x node_q24[4 leaf + c] (Q24 in, 4 per node as
+// the solver keeps them; Q24 out).
 // Integer-only, allocation-free.
 void LeavesToVerticesQ24(const VertexLeafWeights& w, uint32_t vertex_count, const int32_t* node_q24,
                          int32_t* out);

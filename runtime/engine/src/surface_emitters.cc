@@ -116,7 +116,14 @@ void SurfaceEmitters::StartFrom(const Slot& s, int64_t* b, bool* warm) const {
   }
   *warm = s.before.solved && moved < total;
   if (*warm) {
-    for (size_t i = 0; i < size_t{n} * 3; ++i) b[i] = s.before.exitance_q32[i];
+    // The previous solution with the new emission in place of the old, so
+    // the first sweep's change is light, not the step in emission (the
+    // stopping rule reads the sweeps' changes as a contraction).
+    for (uint32_t k = 0; k < n; ++k)
+      for (int c = 0; c < 3; ++c) {
+        const size_t i = 3 * size_t{k} + c;
+        b[i] = h.leaf(k) ? AddSat64(s.before.exitance_q32[i], now[k] - before[k]) : s.before.exitance_q32[i];
+      }
     return;
   }
   for (uint32_t k = 0; k < n; ++k)  // the solver pulls the inner nodes up
