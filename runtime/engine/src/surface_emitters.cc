@@ -73,6 +73,7 @@ Status SurfaceEmitters::Place(int slot, const SurfaceEmitterShape& shape) {
     return Status(st.code(), StrFormat("%s (surface '%s')", st.message().c_str(), shape.surface.c_str()));
   }
   Slot& s = slots_[slot];
+  s.moved = s.placed;
   s.placed = true;
   if (coverage_scratch_ == s.now.coverage_q32) return Status::Ok();  // where it is (or was)
   if (s.before.solved && coverage_scratch_ == s.before.coverage_q32) {
@@ -100,21 +101,24 @@ Status SurfaceEmitters::Remove(int slot) {
   return Status::Ok();
 }
 
-// The previous solution is a good start when the emission moved by less
-// than it is (a drag); otherwise the emission alone is.
+// A move starts from the previous solution when its emitted flux is
+// within a factor 2 of the new one: the start's error is then the difference
+// of two similar indirect fields (a drag: mostly the near field), against
+// the whole indirect field from the emission alone. A new light (placed
+// where nothing was, or after a remove) starts from its emission.
 void SurfaceEmitters::StartFrom(const Slot& s, int64_t* b, bool* warm) const {
   const BakeHierarchy& h = *bake_->hierarchy;
   const uint32_t n = h.node_count();
   const int64_t* now = s.now.coverage_q32.data();
   const int64_t* before = s.before.coverage_q32.data();
-  Int128 moved = 0, total = 0;
+  Int128 flux_before = 0, flux_now = 0;  // covered area, Q64 m^2
   for (uint32_t k = 0; k < n; ++k) {
     if (!h.leaf(k)) continue;
     const Int128 area = static_cast<Int128>(h.node_area[k]);
-    moved += area * (now[k] > before[k] ? now[k] - before[k] : before[k] - now[k]);
-    total += area * now[k];
+    flux_before += area * before[k];
+    flux_now += area * now[k];
   }
-  *warm = s.before.solved && moved < total;
+  *warm = s.moved && s.before.solved && flux_before <= 2 * flux_now && flux_now <= 2 * flux_before;
   if (*warm) {
     // The previous solution with the new emission in place of the old, so
     // the first sweep's change is light, not the step in emission (the

@@ -61,6 +61,7 @@ class SurfaceEmitters {
   };
   struct Slot {
     bool placed = false;
+    bool moved = false;  // the last Place found it placed: a move, not a new light
     int32_t luminance_q12[3] = {0, 0, 0};
     Solution now, before;  // before: the last solved placement the slot moved from
   };
