@@ -90,7 +90,7 @@ void HierarchySolveQ32::Pull(uint32_t begin, uint32_t end, int64_t* b) const {
   }
 }
 
-int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, int64_t* b) {
+int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, int64_t* b, const int64_t* first_shot_q32) {
   const BakeHierarchy& h = *h_;
   const uint32_t n = h.node_count();
   for (uint32_t k = 0; k < n; ++k)
@@ -150,7 +150,8 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, int64_t* b) {
           const size_t i = 3 * size_t{k} + ch;
           // Saturating: a bake whose links pass validation cannot make these
           // overflow, but a runaway solve must not reach signed overflow either.
-          const int64_t e = AddSat64(g0_[i], GradientTerm(gu_[i], gv_[i], &centre_uv_q16_[2 * size_t{k}]));
+          int64_t e = AddSat64(g0_[i], GradientTerm(gu_[i], gv_[i], &centre_uv_q16_[2 * size_t{k}]));
+          if (first_shot_q32 != nullptr) e = AddSat64(e, first_shot_q32[k]);
           const int64_t updated =
               AddSat64(emitted_q32[k], RoundShiftSat64(static_cast<Int128>(rho_q32_[i]) * e, -32));
           const int64_t d = SaturateI64(updated > b[i] ? Int128{updated} - b[i] : Int128{b[i]} - updated);

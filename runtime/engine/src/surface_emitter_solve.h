@@ -34,8 +34,11 @@ class HierarchySolveQ32 {
   Status Init(const Bake& bake);
   // exitance_q32[3 k + c] for every node k and channel c from emitted_q32[k]
   // (the same in every channel; leaves only, inner nodes ignored). Returns
-  // the sweeps it took.
-  int SolveRgb(const int64_t* emitted_q32, int64_t* exitance_q32);
+  // the sweeps it took. first_shot_q32 (optional, per node, leaves only):
+  // irradiance (Q32 lux per unit) the leaves receive besides what they
+  // gather, e.g. adaptive refine's direct light from an emitter whose own
+  // exitance is then left out of emitted_q32.
+  int SolveRgb(const int64_t* emitted_q32, int64_t* exitance_q32, const int64_t* first_shot_q32 = nullptr);
   uint32_t node_count() const { return static_cast<uint32_t>(child_weight_q32_.size()); }
 
  private:
