@@ -51,7 +51,7 @@ struct Engine::Impl {
   Status Allocate(const EngineOptions& options) {
     RELIGHT_RETURN_IF_ERROR(SetUpLuminaires(bake, &lums, &work));
     SizeOutputs(bake, &out, &mix);
-    RELIGHT_RETURN_IF_ERROR(emitters.Open(bake));
+    RELIGHT_RETURN_IF_ERROR(emitters.Open(bake, options.emitter_refine_links));
     StartEngineThreads(options.threads, work, lums.size(), &threads);
     return Status::Ok();
   }

@@ -22,13 +22,14 @@ Status NoHierarchy() {
 
 }  // namespace
 
-Status SurfaceEmitters::Open(const Bake& bake) {
+Status SurfaceEmitters::Open(const Bake& bake, int refine_links) {
   bake_ = &bake;
   vertex_count_ = bake.mesh.vertex_count();
   supported_ = bake.hierarchy.has_value();
   if (!supported_) return Status::Ok();
   // The hierarchy's indices were checked by the engine's ValidateBake.
   RELIGHT_RETURN_IF_ERROR(solver_.Init(bake));
+  RELIGHT_RETURN_IF_ERROR(refine_.Open(bake, refine_links));
   const BakeHierarchy& h = *bake.hierarchy;
   surface_root_.assign(bake.mesh.surface_names.size(), kBakeNoIndex);
   for (uint32_t k = 0; k < h.node_count(); ++k) {
@@ -40,8 +41,11 @@ Status SurfaceEmitters::Open(const Bake& bake) {
   vertex_sum_.assign(size_t{vertex_count_} * 3, 0);
   coverage_scratch_.assign(h.node_count(), 0);
   exitance_.assign(size_t{h.node_count()} * 3, 0);
+  first_shot_scratch_.assign(h.node_count(), 0);
+  no_emission_.assign(h.node_count(), 0);
   for (Slot& s : slots_) {
     s.coverage_q32.assign(h.node_count(), 0);
+    s.first_shot_q32.assign(h.node_count(), 0);
     s.unit_q24.assign(size_t{vertex_count_} * 3, 0);
   }
   return Status::Ok();
@@ -72,8 +76,15 @@ Status SurfaceEmitters::Place(int slot, const SurfaceEmitterShape& shape) {
   if (!st.ok()) {
     return Status(st.code(), StrFormat("%s (surface '%s')", st.message().c_str(), shape.surface.c_str()));
   }
+  const bool refined = shape.method == SurfaceEmitterMethod::kAdaptiveRefine;
+  if (refined) {
+    RELIGHT_RETURN_IF_ERROR(refine_.FirstShot(surface_root_[surface], shape, coverage_scratch_.data(),
+                                              first_shot_scratch_.data()));
+  }
   Slot& s = slots_[slot];
   s.coverage_q32.swap(coverage_scratch_);
+  if (refined) s.first_shot_q32.swap(first_shot_scratch_);
+  s.refined = refined;
   s.placed = true;
   s.dirty = true;
   return Status::Ok();
@@ -100,7 +111,16 @@ int SurfaceEmitters::SolvePending() {
   last_sweeps_ = 0;
   for (Slot& s : slots_) {
     if (!s.placed || !s.dirty) continue;
-    last_sweeps_ += solver_.SolveRgb(s.coverage_q32.data(), exitance_.data());
+    if (s.refined) {
+      // AR: the emitter's light reaches the leaves as the first shot; the
+      // solve interreflects it, and the emitter's own exitance is added after.
+      last_sweeps_ += solver_.SolveRgb(no_emission_.data(), exitance_.data(), s.first_shot_q32.data());
+      for (uint32_t k = 0; k < solver_.node_count(); ++k)
+        for (int c = 0; c < 3; ++c)
+          exitance_[3 * size_t{k} + c] = AddSat64(exitance_[3 * size_t{k} + c], s.coverage_q32[k]);
+    } else {
+      last_sweeps_ += solver_.SolveRgb(s.coverage_q32.data(), exitance_.data());
+    }
     // Unit luminance L = 1 cd/m^2 emits M = pi L; the vertex luminance is
     // exitance / pi, so the pi cancels: the unit-coverage solve is the answer.
     LeavesToVerticesQ24(*bake_->hierarchy, vertex_area_.data(), vertex_count_, exitance_.data(),

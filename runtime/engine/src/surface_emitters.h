@@ -15,19 +15,22 @@
 #include "relight/base/fixed.h"
 #include "relight/base/status.h"
 #include "relight/engine/surface_emitter.h"
+#include "surface_emitter_refine.h"
 #include "surface_emitter_solve.h"
 
 namespace relight {
 
 class SurfaceEmitters {
  public:
-  // A bake without a hierarchy opens fine; every call then returns kUnsupported.
-  Status Open(const Bake& bake);
+  // A bake without a hierarchy opens fine; every call then returns
+  // kUnsupported. refine_links: the adaptive-refine pool (new links).
+  Status Open(const Bake& bake, int refine_links = kDefaultSurfaceEmitterRefineLinks);
 
   // Clips the shape against its surface and stores the coverage; the solve
   // runs at the next SolvePending(). kUnsupported (no hierarchy), kNotFound
   // (no surface of that name), kInvalidArgument (slot, or the shape: off the
-  // plane, not convex, not on the surface). On error nothing changes.
+  // plane, not convex, not on the surface), kOutOfRange (adaptive refine
+  // needs more new links than its pool holds). On error nothing changes.
   Status Place(int slot, const SurfaceEmitterShape& shape);
   // LightQ12 cd/m^2 per channel, >= 0. kInvalidArgument for a bad slot or value.
   Status SetLuminance(int slot, const LightQ12 rgb[3]);
@@ -39,6 +42,7 @@ class SurfaceEmitters {
   void AddTo(int32_t* vertex_q12) const;
 
   int last_sweeps() const { return last_sweeps_; }
+  int last_refine_links() const { return refine_.last_links(); }
 
  private:
   struct Slot {
@@ -46,6 +50,8 @@ class SurfaceEmitters {
     int32_t luminance_q12[3] = {0, 0, 0};
     std::vector<int64_t> coverage_q32;  // per node, covered fraction of each leaf
     std::vector<int32_t> unit_q24;      // 3 per vertex
+    bool refined = false;               // adaptive refine: first_shot_q32 holds its direct light
+    std::vector<int64_t> first_shot_q32;  // per node (leaves), AR only
   };
   Status CheckSlot(int slot) const;
 
@@ -53,10 +59,11 @@ class SurfaceEmitters {
   bool supported_ = false;
   uint32_t vertex_count_ = 0;
   HierarchySolveQ32 solver_;
+  SurfaceEmitterRefine refine_;
   std::vector<uint32_t> surface_root_;  // per surface, kBakeNoIndex if it has no tree
   std::vector<UInt128> vertex_area_;
   std::vector<Int128> vertex_sum_;
-  std::vector<int64_t> coverage_scratch_, exitance_;
+  std::vector<int64_t> coverage_scratch_, exitance_, first_shot_scratch_, no_emission_;
   Slot slots_[kMaxSurfaceEmitters];
   int last_sweeps_ = 0;
 };

@@ -41,6 +41,9 @@ struct EngineOptions {
   // capped at 2. Each thread beyond the first costs a copy of the
   // engine's scratch (a few times the largest receiver set x 3 x 8 bytes).
   int threads = 0;
+  // New links one adaptive-refine emitter placement may make (8 bytes each,
+  // allocated at Open); a placement needing more is refused with kOutOfRange.
+  int emitter_refine_links = kDefaultSurfaceEmitterRefineLinks;
 };
 
 class Engine {

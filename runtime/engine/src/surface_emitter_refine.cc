@@ -1,0 +1,298 @@
+// Adaptive refine (surface_emitter_refine.h).
+//
+// Scaling and overflow: positions Q16.16 metres in int64. The emitter and a
+// node's corners are compared in the surface's plane projected along its
+// normal's largest axis: a side test is (edge, < 2^33) x (point - start,
+// < 2^33) < 2^67 in Int128; a crossing moves a corner by (p - s) ds /
+// (ds - dp), < 2^33 x 2^67 in Int128. Factors UQ0.32 summed over <= 6
+// points in uint64. A ratio is UQ0.32 (<= 1: the clipped polygon lies inside
+// the node's). f (UQ0.32) x ratio -> Q32 irradiance per unit exitance;
+// g (Q8.23 per metre) x ratio (Q32) >> 23 -> Q32 per metre, as the solver's
+// gathers (surface_emitter_solve.cc). Coverage means: area (Q32.32 m^2,
+// < 2^64) x fraction (<= 2^32) summed over <= 4 children, < 2^98.
+#include "surface_emitter_refine.h"
+
+#include "point_polygon_factor.h"
+#include "relight/base/fixed_math.h"
+#include "relight/base/fixed_ops.h"
+#include "surface_emitter_frame.h"
+
+namespace relight {
+namespace {
+
+constexpr int64_t kOne = int64_t{1} << 32;
+constexpr int kStackNodes = 1024;
+
+const int32_t* CornerQ16(const BakeHierarchy& h, const BakeMesh& mesh, uint32_t node, int k) {
+  return &mesh.positions[3 * size_t{h.node_corners[size_t{node} * kBakeMaxNodeCorners + static_cast<size_t>(k)]}];
+}
+
+int64_t GradientTerm(int64_t gu, int64_t gv, const int32_t* uv_q16) {
+  return RoundShiftSat64(static_cast<Int128>(gu) * uv_q16[0] + static_cast<Int128>(gv) * uv_q16[1], -16);
+}
+
+// Unit normal (Q1.30) of a Newell normal of any scale.
+void UnitNormal(const Int128 normal[3], int32_t out_q30[3]) {
+  UInt128 big = 0;
+  for (int i = 0; i < 3; ++i)
+    if (Abs128(normal[i]) > big) big = Abs128(normal[i]);
+  const int shift = BitLength128(big) > 60 ? BitLength128(big) - 60 : 0;
+  const int64_t v[3] = {static_cast<int64_t>(normal[0] >> shift), static_cast<int64_t>(normal[1] >> shift),
+                        static_cast<int64_t>(normal[2] >> shift)};
+  if (v[0] == 0 && v[1] == 0 && v[2] == 0) {
+    out_q30[0] = out_q30[1] = out_q30[2] = 0;
+    return;
+  }
+  NormaliseQ30(v, out_q30);
+}
+
+// The emitter in the surface's projected plane, counter-clockwise, and the
+// node polygons it cuts, corners in 3D.
+struct EmitterClip {
+  int a = 0, b = 1, count = 0;
+  int64_t e[kMaxSurfaceEmitterCorners][2];
+
+  Int128 Side(int k, const int64_t* p) const {
+    const int64_t* s = e[k];
+    const int64_t* t = e[(k + 1) % count];
+    return static_cast<Int128>(t[0] - s[0]) * (p[b] - s[1]) - static_cast<Int128>(t[1] - s[1]) * (p[a] - s[0]);
+  }
+  // Sutherland-Hodgman of the node's polygon by each emitter edge; returns
+  // the corner count (0 when nothing is left).
+  int Clip(const BakeHierarchy& h, const BakeMesh& mesh, uint32_t node, int64_t (*out)[3]) const {
+    int64_t poly[kMaxFactorPolygonCorners][3], next[kMaxFactorPolygonCorners][3];
+    int n = h.node_corner_count[node];
+    for (int k = 0; k < n; ++k)
+      for (int i = 0; i < 3; ++i) poly[k][i] = CornerQ16(h, mesh, node, k)[i];
+    for (int edge = 0; edge < count && n > 0; ++edge) {
+      int m = 0;
+      for (int k = 0; k < n; ++k) {
+        const int64_t* s = poly[(k + n - 1) % n];
+        const int64_t* p = poly[k];
+        const Int128 ds = Side(edge, s), dp = Side(edge, p);
+        // A convex node cut by a convex emitter has at most 6 + 8 corners.
+        if ((ds < 0) != (dp < 0) && m < kMaxFactorPolygonCorners) {
+          const Int128 den = ds - dp, sign = den < 0 ? -1 : 1;
+          for (int i = 0; i < 3; ++i)
+            next[m][i] = s[i] + static_cast<int64_t>(DivRound(static_cast<Int128>(p[i] - s[i]) * ds * sign, den * sign));
+          ++m;
+        }
+        if (dp >= 0 && m < kMaxFactorPolygonCorners) {
+          for (int i = 0; i < 3; ++i) next[m][i] = p[i];
+          ++m;
+        }
+      }
+      for (int k = 0; k < m; ++k)
+        for (int i = 0; i < 3; ++i) poly[k][i] = next[k][i];
+      n = m;
+    }
+    if (n < 3) return 0;
+    for (int k = 0; k < n; ++k)
+      for (int i = 0; i < 3; ++i) out[k][i] = poly[k][i];
+    return n;
+  }
+};
+
+}  // namespace
+
+Status SurfaceEmitterRefine::Open(const Bake& bake, int pool_links) {
+  if (!bake.hierarchy) return Status(StatusCode::kUnsupported, "bake has no hierarchy");
+  if (pool_links < 0) return Status(StatusCode::kInvalidArgument, "surface emitter: refine pool < 0 links");
+  h_ = &*bake.hierarchy;
+  mesh_ = &bake.mesh;
+  const BakeHierarchy& h = *h_;
+  const uint32_t n = h.node_count();
+  centroid_q16_.assign(size_t{n} * 3, 0);
+  centre_uv_q16_.assign(size_t{n} * 2, 0);
+  normal_q30_.assign(bake.mesh.surface_names.size() * 3, 0);
+  drop_axis_.assign(bake.mesh.surface_names.size(), 0);
+  tree_end_.assign(n, 0);
+  SurfaceFrameQ30 frame{};
+  uint32_t root = 0;
+  for (uint32_t k = 0; k < n; ++k) {
+    if (h.node_parent[k] == kBakeNoIndex) {
+      if (k > 0) tree_end_[root] = k;
+      root = k;
+      MakeSurfaceFrameQ30(h, bake.mesh, k, &frame);
+      const size_t s = h.node_surface[k];
+      Int128 normal[3];
+      NodeNormalQ32(h, bake.mesh, k, normal);
+      UnitNormal(normal, &normal_q30_[3 * s]);
+      drop_axis_[s] = static_cast<uint8_t>(frame.drop_axis);
+    }
+    NodeCentreUvQ16(h, bake.mesh, frame, k, &centre_uv_q16_[2 * size_t{k}]);
+    // Area centroid in 3D: fan triangles weighted by their area projected
+    // along the surface's axis (proportional to the true areas).
+    const int a_axis = (frame.drop_axis + 1) % 3, b_axis = (frame.drop_axis + 2) % 3;
+    const int32_t* c0 = CornerQ16(h, bake.mesh, k, 0);
+    Int128 weight = 0, sum[3] = {0, 0, 0};
+    for (int j = 1; j + 1 < h.node_corner_count[k]; ++j) {
+      const int32_t* b = CornerQ16(h, bake.mesh, k, j);
+      const int32_t* c = CornerQ16(h, bake.mesh, k, j + 1);
+      const Int128 w = static_cast<Int128>(int64_t{b[a_axis]} - c0[a_axis]) * (int64_t{c[b_axis]} - c0[b_axis]) -
+                       static_cast<Int128>(int64_t{c[a_axis]} - c0[a_axis]) * (int64_t{b[b_axis]} - c0[b_axis]);
+      weight += w;
+      for (int i = 0; i < 3; ++i) sum[i] += w * (int64_t{b[i]} + c[i] - 2 * int64_t{c0[i]});
+    }
+    for (int i = 0; i < 3; ++i)
+      centroid_q16_[3 * size_t{k} + i] = c0[i] + (weight == 0 ? 0 : static_cast<int64_t>(DivRound(sum[i], 3 * (weight < 0 ? -weight : weight)) * (weight < 0 ? -1 : 1)));
+  }
+  if (n > 0) tree_end_[root] = n;
+  // Per source node, the link sides its light leaves through.
+  send_offsets_.assign(size_t{n} + 1, 0);
+  for (uint32_t i = 0; i < h.link_count(); ++i) {
+    if (h.link_f_pq[i] != 0) ++send_offsets_[h.link_q[i] + 1];
+    if (h.link_f_qp[i] != 0) ++send_offsets_[h.link_p[i] + 1];
+  }
+  for (uint32_t k = 0; k < n; ++k) send_offsets_[k + 1] += send_offsets_[k];
+  send_.assign(send_offsets_[n], 0);
+  std::vector<uint32_t> fill(send_offsets_.begin(), send_offsets_.end() - 1);
+  for (uint32_t i = 0; i < h.link_count(); ++i) {
+    if (h.link_f_pq[i] != 0) send_[fill[h.link_q[i]]++] = 2 * i;
+    if (h.link_f_qp[i] != 0) send_[fill[h.link_p[i]]++] = 2 * i + 1;
+  }
+  coverage_mean_q32_.assign(n, 0);
+  e0_.assign(n, 0);
+  eu_.assign(n, 0);
+  ev_.assign(n, 0);
+  pool_.assign(static_cast<size_t>(pool_links), NewLink{0, 0});
+  return Status::Ok();
+}
+
+uint32_t SurfaceEmitterRefine::RatioQ32(uint32_t link_side, const int64_t (*clipped)[3], int clipped_count,
+                                        uint32_t source) const {
+  const BakeHierarchy& h = *h_;
+  const uint32_t link = link_side >> 1;
+  const uint32_t r = (link_side & 1) ? h.link_q[link] : h.link_p[link];
+  const int32_t* n = &normal_q30_[3 * size_t{h.node_surface[r]}];
+  int64_t whole[kBakeMaxNodeCorners][3];
+  const int source_count = h.node_corner_count[source];
+  for (int k = 0; k < source_count; ++k)
+    for (int i = 0; i < 3; ++i) whole[k][i] = CornerQ16(h, *mesh_, source, k)[i];
+  // The receiver's quadrature: half way from its centroid to each corner
+  // (a quad's 2 x 2 bilinear midpoints when it is a parallelogram).
+  const int64_t* c = &centroid_q16_[3 * size_t{r}];
+  uint64_t num = 0, den = 0;
+  for (int k = 0; k < h.node_corner_count[r]; ++k) {
+    const int32_t* corner = CornerQ16(h, *mesh_, r, k);
+    const int64_t x[3] = {(c[0] + corner[0]) / 2, (c[1] + corner[1]) / 2, (c[2] + corner[2]) / 2};
+    num += PointToPolygonFactorQ32(x, n, clipped, clipped_count);
+    den += PointToPolygonFactorQ32(x, n, whole, source_count);
+  }
+  // The receiver sees the node only edge-on: keep FE's share.
+  if (den == 0) return static_cast<uint32_t>(coverage_mean_q32_[source] >= kOne ? kOne - 1 : coverage_mean_q32_[source]);
+  const UInt128 ratio = (static_cast<UInt128>(num) << 32) / den;
+  return ratio >= static_cast<UInt128>(kOne) ? 0xFFFFFFFFu : static_cast<uint32_t>(ratio);
+}
+
+void SurfaceEmitterRefine::Send(uint32_t link_side, uint64_t ratio_q32) {
+  const BakeHierarchy& h = *h_;
+  const uint32_t link = link_side >> 1;
+  const bool from_p = (link_side & 1) != 0;
+  const uint32_t r = from_p ? h.link_q[link] : h.link_p[link];
+  const uint32_t f = from_p ? h.link_f_qp[link] : h.link_f_pq[link];
+  const int32_t* g = from_p ? &h.link_g_qp[2 * size_t{link}] : &h.link_g_pq[2 * size_t{link}];
+  e0_[r] = AddSat64(e0_[r], RoundShiftSat64(static_cast<Int128>(f) * ratio_q32, -32));
+  eu_[r] = AddSat64(eu_[r], RoundShiftSat64(static_cast<Int128>(g[0]) * ratio_q32, -kBakeGradientFracBits));
+  ev_[r] = AddSat64(ev_[r], RoundShiftSat64(static_cast<Int128>(g[1]) * ratio_q32, -kBakeGradientFracBits));
+}
+
+void SurfaceEmitterRefine::SendSubtree(uint32_t node) {
+  for (uint32_t e = send_offsets_[node]; e < send_offsets_[node + 1]; ++e) Send(send_[e], kOne);
+  const uint32_t first = h_->node_first_child[node];
+  for (uint32_t c = first; c < first + h_->node_child_count[node]; ++c) SendSubtree(c);
+}
+
+Status SurfaceEmitterRefine::FirstShot(uint32_t root, const SurfaceEmitterShape& shape, const int64_t* coverage_q32,
+                                       int64_t* leaf_irradiance_q32) {
+  const BakeHierarchy& h = *h_;
+  const uint32_t n = h.node_count(), end = tree_end_[root];
+  // How much of each node the emitter covers (area-weighted, as FE's pull).
+  for (uint32_t k = end; k-- > root;) {
+    if (h.leaf(k)) {
+      coverage_mean_q32_[k] = coverage_q32[k];
+      continue;
+    }
+    Int128 sum = 0;
+    const uint32_t first = h.node_first_child[k];
+    for (uint32_t c = first; c < first + h.node_child_count[k]; ++c)
+      sum += static_cast<Int128>(h.node_area[c]) * coverage_mean_q32_[c];
+    coverage_mean_q32_[k] = h.node_area[k] == 0 ? 0 : static_cast<int64_t>(sum / h.node_area[k]);
+  }
+  EmitterClip clip;
+  const int drop = drop_axis_[h.node_surface[root]];
+  clip.a = (drop + 1) % 3;
+  clip.b = (drop + 2) % 3;
+  clip.count = shape.corner_count;
+  Int128 twice_area = 0;
+  for (int k = 0; k < shape.corner_count; ++k) {
+    clip.e[k][0] = shape.corners_q16[k][clip.a];
+    clip.e[k][1] = shape.corners_q16[k][clip.b];
+  }
+  for (int k = 0; k < shape.corner_count; ++k) {
+    const int64_t* p = clip.e[k];
+    const int64_t* q = clip.e[(k + 1) % shape.corner_count];
+    twice_area += static_cast<Int128>(p[0]) * q[1] - static_cast<Int128>(q[0]) * p[1];
+  }
+  if (twice_area < 0) {
+    for (int i = 0, j = shape.corner_count - 1; i < j; ++i, --j)
+      for (int d = 0; d < 2; ++d) {
+        const int64_t t = clip.e[i][d];
+        clip.e[i][d] = clip.e[j][d];
+        clip.e[j][d] = t;
+      }
+  }
+  for (uint32_t k = 0; k < n; ++k) e0_[k] = eu_[k] = ev_[k] = 0;
+  // Fig. 5 from the root: fully covered subtrees send as they are; a partly
+  // covered node's links get new factors for its clipped part.
+  uint32_t stack[kStackNodes];
+  int depth = 0;
+  stack[depth++] = root;
+  size_t needed = 0;
+  int64_t clipped[kMaxFactorPolygonCorners][3];
+  while (depth > 0) {
+    const uint32_t s = stack[--depth];
+    if (coverage_mean_q32_[s] <= 0) continue;
+    if (coverage_mean_q32_[s] >= kOne) {
+      SendSubtree(s);
+      continue;
+    }
+    const int count = clip.Clip(h, *mesh_, s, clipped);
+    for (uint32_t e = send_offsets_[s]; e < send_offsets_[s + 1]; ++e, ++needed) {
+      if (needed >= pool_.size()) continue;  // over: count what it would need
+      pool_[needed] = {send_[e], count == 0 ? 0u : RatioQ32(send_[e], clipped, count, s)};
+    }
+    const uint32_t first = h.node_first_child[s];
+    for (uint32_t c = first; c < first + h.node_child_count[s]; ++c) {
+      if (depth == kStackNodes) return Status(StatusCode::kInternal, "surface emitter: quadtree too deep");
+      stack[depth++] = c;
+    }
+  }
+  if (needed > pool_.size()) {
+    return Status(StatusCode::kOutOfRange,
+                  StrFormat("surface emitter (adaptive refine): the polygon needs %zu new links, more than "
+                            "the %zu the refine pool holds (EngineOptions::emitter_refine_links)",
+                            needed, pool_.size()));
+  }
+  for (size_t i = 0; i < needed; ++i) Send(pool_[i].link_side, pool_[i].ratio_q32);
+  last_links_ = static_cast<int>(needed);
+  // Push down as the solver does: each node's field about its surface's
+  // origin, a child adds its parent's, a leaf takes the field at its centroid.
+  for (uint32_t k = 0; k < n; ++k) {
+    const int32_t* uv = &centre_uv_q16_[2 * size_t{k}];
+    e0_[k] = SubSat64(e0_[k], GradientTerm(eu_[k], ev_[k], uv));
+    const uint32_t parent = h.node_parent[k];
+    if (parent != kBakeNoIndex) {
+      e0_[k] = AddSat64(e0_[k], e0_[parent]);
+      eu_[k] = AddSat64(eu_[k], eu_[parent]);
+      ev_[k] = AddSat64(ev_[k], ev_[parent]);
+    }
+  }
+  for (uint32_t k = 0; k < n; ++k) {
+    leaf_irradiance_q32[k] =
+        h.leaf(k) ? AddSat64(e0_[k], GradientTerm(eu_[k], ev_[k], &centre_uv_q16_[2 * size_t{k}])) : 0;
+  }
+  return Status::Ok();
+}
+
+}  // namespace relight
