@@ -7,6 +7,9 @@
 //                         alike), leaves to vertices, mix
 //   BM_EmitterPlaceOnly   SetSurfaceEmitter alone: the clip
 //   BM_EmitterLuminance   SetSurfaceEmitterLuminance + Update(): a rescale
+//   BM_EmitterMoveAr, BM_EmitterPlaceOnlyAr   the same two with adaptive
+//                         refine (the others use FE): clip, the refine's new
+//                         link factors (surface_emitter_refine.h), first-shot solve
 //
 //   surface_emitter_bench BAKE.rlb SURFACE x0,y0,z0 x1,y1,z1 x2,y2,z2 [--benchmark_...]
 //
@@ -23,7 +26,7 @@
 namespace {
 
 relight::Engine* g_engine = nullptr;
-relight::SurfaceEmitterShape g_shape[2];
+relight::SurfaceEmitterShape g_shape[2], g_shape_ar[2];
 
 const relight::LightQ12 kWhite[3] = {relight::LightQ12::FromRaw(1000 << 12),
                                      relight::LightQ12::FromRaw(1000 << 12),
@@ -69,10 +72,29 @@ void BM_EmitterLuminance(benchmark::State& state) {
   }
 }
 
+void BM_EmitterMoveAr(benchmark::State& state) {
+  int i = 0, sweeps = 0;
+  for (auto _ : state) {
+    (void)g_engine->SetSurfaceEmitter(0, g_shape_ar[i++ & 1], kWhite);
+    g_engine->Update();
+    sweeps = g_engine->last_update_emitter_sweeps();
+    benchmark::DoNotOptimize(g_engine->vertex_luminance());
+  }
+  state.counters["sweeps"] = sweeps;
+}
+
+void BM_EmitterPlaceOnlyAr(benchmark::State& state) {
+  int i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(g_engine->SetSurfaceEmitter(1, g_shape_ar[i++ & 1], kWhite));
+  (void)g_engine->RemoveSurfaceEmitter(1);
+}
+
 BENCHMARK(BM_PanChange)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EmitterMove)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EmitterPlaceOnly)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EmitterLuminance)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EmitterMoveAr)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EmitterPlaceOnlyAr)->Unit(benchmark::kMillisecond);
 
 bool ParseCorner(const char* text, double out[3]) {
   return std::sscanf(text, "%lf,%lf,%lf", &out[0], &out[1], &out[2]) == 3;
@@ -99,6 +121,9 @@ int main(int argc, char** argv) {
       for (int i = 0; i < 3; ++i)
         g_shape[s].corners_q16[k][i] =
             static_cast<int32_t>(std::lround((c[k][i] + 0.25 * s * (c[1][i] - c[0][i])) * 65536.0));
+    g_shape_ar[s] = g_shape[s];
+    g_shape[s].method = relight::SurfaceEmitterMethod::kFractionalEmissivity;
+    g_shape_ar[s].method = relight::SurfaceEmitterMethod::kAdaptiveRefine;
   }
   if (relight::Status st = engine.SetSurfaceEmitter(0, g_shape[1], kWhite); !st.ok()) {
     std::fprintf(stderr, "%s\n", st.ToString().c_str());

@@ -320,6 +320,10 @@ int Engine::last_update_emitter_sweeps() const {
   return impl_ ? impl_->emitters.last_sweeps() : 0;
 }
 
+int Engine::last_emitter_refine_links() const {
+  return impl_ ? impl_->emitters.last_refine_links() : 0;
+}
+
 namespace {
 
 Status NotOpen() { return Status(StatusCode::kInvalidArgument, "engine not open"); }
