@@ -191,6 +191,10 @@ TEST(SurfaceEmitterAr, LivingRoom16k) {
   const std::vector<Case> cases = {
       {"room/+z", {{2.5, 1.5, 2.7}, {3.5, 1.5, 2.7}, {3.0, 2.5, 2.7}}},
       {"room/+z", {{2.53, 1.51, 2.7}, {3.47, 1.56, 2.7}, {3.44, 2.49, 2.7}, {2.49, 2.44, 2.7}}},
+      // Windows (the paper's Figs. 7-8): on the free wall +x, on the front wall.
+      {"room/+x", {{6.0, 1.21, 0.93}, {6.0, 2.33, 0.97}, {6.0, 2.31, 2.12}, {6.0, 1.19, 2.08}}},
+      {"room/-y", {{2.21, 0.0, 0.93}, {3.33, 0.0, 0.97}, {3.31, 0.0, 2.12}, {2.19, 0.0, 2.08}}},
+      // One mostly behind the shelf (2 cm from the wall): light through gaps.
       {"room/-x", {{0.0, 1.21, 0.93}, {0.0, 2.33, 0.97}, {0.0, 2.31, 2.12}, {0.0, 1.19, 2.08}}},
   };
   CompareOnScene(std::string(RELIGHT_SOURCE_DIR) + "/fixtures/living_room.toml", 0.092, cases, false, bake_path);

@@ -4,9 +4,9 @@
 // (any scene within +-32 km). Heights n.r: Q1.30 x Q16.16 < 2^64 in Int128;
 // the crossing parameter t = h_a / (h_a - h_b) at Q.32 (h << 32 < 2^96); the
 // corners relative to x, r, at Q.32 (< 2^49), a crossing's (b - a) t <
-// 2^66. Per edge c = r0 x r1 and d = r0 . r1 are < 2^99; both are shifted right
-// together until below 2^40, so c.c < 2^82 for ISqrt128 and the angle
-// atan2(|c|, d) keeps its ratio. The angle is a binary angle (2^32 = 2 pi) in
+// 2^66. Per edge c = r0 x r1 and d = r0 . r1 are < 2^99; both are shifted
+// right together until below 2^30, so c.c < 2^62 for ISqrt64, n . c < 2^62,
+// and the angle atan2(|c|, d) keeps its ratio. The angle is a binary angle (2^32 = 2 pi) in
 // [0, 2^31], the cosine n . c / |c| Q1.30: their product < 2^61, summed over
 // <= 16 edges in Int128. F = sum angle_rad cos / (2 pi) = sum bam cos / 2^32,
 // so F in UQ0.32 is the sum shifted right by 30.
@@ -67,15 +67,17 @@ uint32_t PointToPolygonFactorQ32(const int64_t x_q16[3], const int32_t n_q30[3],
     UInt128 big = Abs128(d);
     for (int i = 0; i < 3; ++i)
       if (Abs128(c[i]) > big) big = Abs128(c[i]);
-    const int shift = BitLength128(big) > 40 ? BitLength128(big) - 40 : 0;
-    for (int i = 0; i < 3; ++i) c[i] >>= shift;
-    d >>= shift;
-    const uint64_t length = ISqrt128(static_cast<UInt128>(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]));
+    // Below 2^30 the squares' sum fits 63 bits (ISqrt64) and every product
+    // after it fits int64; 30 significant bits keep the angle to ~1e-9.
+    const int shift = BitLength128(big) > 30 ? BitLength128(big) - 30 : 0;
+    const int64_t cx = static_cast<int64_t>(c[0] >> shift), cy = static_cast<int64_t>(c[1] >> shift),
+                  cz = static_cast<int64_t>(c[2] >> shift), dd = static_cast<int64_t>(d >> shift);
+    const uint32_t length = ISqrt64(static_cast<uint64_t>(cx * cx + cy * cy + cz * cz));
     if (length == 0) continue;  // x on this edge's line: it subtends no angle
-    const Bam angle = Atan2BamFast(static_cast<int64_t>(length), static_cast<int64_t>(d));
-    const Int128 nc = static_cast<Int128>(n_q30[0]) * c[0] + static_cast<Int128>(n_q30[1]) * c[1] +
-                      static_cast<Int128>(n_q30[2]) * c[2];  // Q30 x |c|
-    sum += static_cast<Int128>(angle) * (nc / static_cast<Int128>(length));
+    const Bam angle = Atan2BamFast(length, dd);
+    // n . c / |c|: Q1.30 x 2^30 / 2^30 -> Q1.30.
+    const int64_t nc = int64_t{n_q30[0]} * cx + int64_t{n_q30[1]} * cy + int64_t{n_q30[2]} * cz;
+    sum += static_cast<Int128>(angle) * (nc / static_cast<int64_t>(length));
   }
   const UInt128 f = Abs128(sum) >> 30;
   return f >= (static_cast<UInt128>(1) << 32) ? 0xFFFFFFFFu : static_cast<uint32_t>(f);

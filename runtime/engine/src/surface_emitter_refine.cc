@@ -12,6 +12,8 @@
 // < 2^64) x fraction (<= 2^32) summed over <= 4 children, < 2^98.
 #include "surface_emitter_refine.h"
 
+#include <cstdlib>
+
 #include "point_polygon_factor.h"
 #include "relight/base/fixed_math.h"
 #include "relight/base/fixed_ops.h"
@@ -22,6 +24,9 @@ namespace {
 
 constexpr int64_t kOne = int64_t{1} << 32;
 constexpr int kStackNodes = 1024;
+// A partly covered node's link is refined when it carries more than this of
+// the emitter's exitance (F x covered fraction, UQ0.32): 2^-10.
+constexpr uint64_t kRefineThresholdQ32 = uint64_t{1} << 22;
 
 const int32_t* CornerQ16(const BakeHierarchy& h, const BakeMesh& mesh, uint32_t node, int k) {
   return &mesh.positions[3 * size_t{h.node_corners[size_t{node} * kBakeMaxNodeCorners + static_cast<size_t>(k)]}];
@@ -155,34 +160,38 @@ Status SurfaceEmitterRefine::Open(const Bake& bake, int pool_links) {
   e0_.assign(n, 0);
   eu_.assign(n, 0);
   ev_.assign(n, 0);
-  pool_.assign(static_cast<size_t>(pool_links), NewLink{0, 0});
+  pool_.assign(static_cast<size_t>(pool_links), NewLink{0, 0, 0, 0});
+  refine_threshold_q32_ = kRefineThresholdQ32;
+  if (const char* t = std::getenv("RELIGHT_AR_THRESHOLD_Q32")) refine_threshold_q32_ = std::strtoull(t, nullptr, 10);
   return Status::Ok();
 }
 
-uint32_t SurfaceEmitterRefine::RatioQ32(uint32_t link_side, const int64_t (*clipped)[3], int clipped_count,
-                                        uint32_t source) const {
+int SurfaceEmitterRefine::Corners(uint32_t node, int64_t (*out)[3]) const {
+  const int count = h_->node_corner_count[node];
+  for (int k = 0; k < count; ++k)
+    for (int i = 0; i < 3; ++i) out[k][i] = CornerQ16(*h_, *mesh_, node, k)[i];
+  return count;
+}
+
+// Sum of F from the receiver's quadrature points to the polygon: half way
+// from its centroid to each corner (a quad's 2 x 2 bilinear midpoints when it
+// is a parallelogram), so the mean is this over the corner count.
+uint64_t SurfaceEmitterRefine::SumFactorsQ32(uint32_t receiver, const int64_t (*poly)[3], int count) const {
   const BakeHierarchy& h = *h_;
-  const uint32_t link = link_side >> 1;
-  const uint32_t r = (link_side & 1) ? h.link_q[link] : h.link_p[link];
-  const int32_t* n = &normal_q30_[3 * size_t{h.node_surface[r]}];
-  int64_t whole[kBakeMaxNodeCorners][3];
-  const int source_count = h.node_corner_count[source];
-  for (int k = 0; k < source_count; ++k)
-    for (int i = 0; i < 3; ++i) whole[k][i] = CornerQ16(h, *mesh_, source, k)[i];
-  // The receiver's quadrature: half way from its centroid to each corner
-  // (a quad's 2 x 2 bilinear midpoints when it is a parallelogram).
-  const int64_t* c = &centroid_q16_[3 * size_t{r}];
-  uint64_t num = 0, den = 0;
-  for (int k = 0; k < h.node_corner_count[r]; ++k) {
-    const int32_t* corner = CornerQ16(h, *mesh_, r, k);
+  const int32_t* n = &normal_q30_[3 * size_t{h.node_surface[receiver]}];
+  const int64_t* c = &centroid_q16_[3 * size_t{receiver}];
+  uint64_t sum = 0;
+  for (int k = 0; k < h.node_corner_count[receiver]; ++k) {
+    const int32_t* corner = CornerQ16(h, *mesh_, receiver, k);
     const int64_t x[3] = {(c[0] + corner[0]) / 2, (c[1] + corner[1]) / 2, (c[2] + corner[2]) / 2};
-    num += PointToPolygonFactorQ32(x, n, clipped, clipped_count);
-    den += PointToPolygonFactorQ32(x, n, whole, source_count);
+    sum += PointToPolygonFactorQ32(x, n, poly, count);
   }
-  // The receiver sees the node only edge-on: keep FE's share.
-  if (den == 0) return static_cast<uint32_t>(coverage_mean_q32_[source] >= kOne ? kOne - 1 : coverage_mean_q32_[source]);
-  const UInt128 ratio = (static_cast<UInt128>(num) << 32) / den;
-  return ratio >= static_cast<UInt128>(kOne) ? 0xFFFFFFFFu : static_cast<uint32_t>(ratio);
+  return sum;
+}
+
+void SurfaceEmitterRefine::Add(uint32_t receiver, int64_t e0, int64_t eu, int64_t ev) {
+  if (needed_ < pool_.size()) pool_[needed_] = {receiver, e0, eu, ev};
+  ++needed_;  // past the pool: only counts what the placement would need
 }
 
 void SurfaceEmitterRefine::Send(uint32_t link_side, uint64_t ratio_q32) {
@@ -193,14 +202,78 @@ void SurfaceEmitterRefine::Send(uint32_t link_side, uint64_t ratio_q32) {
   const uint32_t f = from_p ? h.link_f_qp[link] : h.link_f_pq[link];
   const int32_t* g = from_p ? &h.link_g_qp[2 * size_t{link}] : &h.link_g_pq[2 * size_t{link}];
   e0_[r] = AddSat64(e0_[r], RoundShiftSat64(static_cast<Int128>(f) * ratio_q32, -32));
-  eu_[r] = AddSat64(eu_[r], RoundShiftSat64(static_cast<Int128>(g[0]) * ratio_q32, -kBakeGradientFracBits));
-  ev_[r] = AddSat64(ev_[r], RoundShiftSat64(static_cast<Int128>(g[1]) * ratio_q32, -kBakeGradientFracBits));
+  if (g[0] != 0 || g[1] != 0) {
+    eu_[r] = AddSat64(eu_[r], RoundShiftSat64(static_cast<Int128>(g[0]) * ratio_q32, -kBakeGradientFracBits));
+    ev_[r] = AddSat64(ev_[r], RoundShiftSat64(static_cast<Int128>(g[1]) * ratio_q32, -kBakeGradientFracBits));
+  }
 }
 
-void SurfaceEmitterRefine::SendSubtree(uint32_t node) {
-  for (uint32_t e = send_offsets_[node]; e < send_offsets_[node + 1]; ++e) Send(send_[e], kOne);
+// Below a receiver the stored link treated as one node: each child gets the
+// emitter's light at its own points, with the link's visibility (route (a)).
+void SurfaceEmitterRefine::RefineReceiver(uint32_t node, const Source& source, uint64_t visibility_q32,
+                                          uint64_t reverse_q32) {
+  const BakeHierarchy& h = *h_;
+  if (!h.leaf(node) && ((reverse_q32 * source.coverage_q32) >> 32) >= refine_threshold_q32_) {
+    const uint32_t first = h.node_first_child[node];
+    for (uint32_t c = first; c < first + h.node_child_count[node]; ++c) {
+      const uint64_t share = static_cast<uint64_t>((static_cast<UInt128>(reverse_q32) * h.node_area[c]) / h.node_area[node]);
+      RefineReceiver(c, source, visibility_q32, share);
+    }
+    return;
+  }
+  if (needed_ >= pool_.size()) return Add(node, 0, 0, 0);
+  const uint64_t sum = SumFactorsQ32(node, source.poly, source.count);
+  const uint64_t mean = sum / static_cast<uint64_t>(h.node_corner_count[node]);
+  Add(node, RoundShiftSat64(static_cast<Int128>(mean) * visibility_q32, -32), 0, 0);
+}
+
+// One link of an emitting node: FE's share where it carries little of the
+// emitter's light (BF's F x B below the threshold), else new factors.
+void SurfaceEmitterRefine::SendLink(const Source& source, uint32_t link_side) {
+  const BakeHierarchy& h = *h_;
+  const uint32_t link = link_side >> 1;
+  const bool from_p = (link_side & 1) != 0;
+  const uint32_t r = from_p ? h.link_q[link] : h.link_p[link];
+  const uint64_t f = from_p ? h.link_f_qp[link] : h.link_f_pq[link];
+  const uint64_t reverse = from_p ? h.link_f_pq[link] : h.link_f_qp[link];  // r's size seen from the source
+  const uint64_t cov = source.coverage_q32;
+  // Where in the node the emitter sits matters when the node looks large
+  // from the receiver; how the light varies over the receiver, when the
+  // receiver looks large from the emitter.
+  const bool refine_source = source.partial && ((f * cov) >> 32) >= refine_threshold_q32_;
+  const bool refine_receiver = !h.leaf(r) && ((reverse * cov) >> 32) >= refine_threshold_q32_;
+  if (!refine_source && !refine_receiver) return Send(link_side, cov);
+  if (needed_ >= pool_.size()) {  // over: count, do not compute
+    if (!refine_receiver) return Add(r, 0, 0, 0);
+    return RefineReceiver(r, source, 0, reverse);
+  }
+  int64_t whole[kBakeMaxNodeCorners][3];
+  const int whole_count = Corners(source.node, whole);
+  const uint64_t den = SumFactorsQ32(r, whole, whole_count);
+  // The receiver sees the node only edge-on at its points: keep FE's share.
+  if (den == 0) return Send(link_side, cov);
+  const uint64_t num = source.partial ? SumFactorsQ32(r, source.poly, source.count) : den;
+  if (!refine_receiver) {
+    const UInt128 ratio = (static_cast<UInt128>(num) << 32) / den;
+    const int32_t* g = from_p ? &h.link_g_qp[2 * size_t{link}] : &h.link_g_pq[2 * size_t{link}];
+    const uint64_t ratio_q32 = ratio > (static_cast<UInt128>(1) << 32) ? kOne : static_cast<uint64_t>(ratio);
+    Add(r, RoundShiftSat64(static_cast<Int128>(f) * ratio_q32, -32),
+        RoundShiftSat64(static_cast<Int128>(g[0]) * ratio_q32, -kBakeGradientFracBits),
+        RoundShiftSat64(static_cast<Int128>(g[1]) * ratio_q32, -kBakeGradientFracBits));
+    return;
+  }
+  // The stored factor over the unoccluded one: the link's visibility, which
+  // the receiver's children inherit (capped at 2: quadratures differ).
+  const UInt128 vis = (static_cast<UInt128>(f) * h.node_corner_count[r] << 32) / den;
+  const uint64_t vis_q32 = vis > (static_cast<UInt128>(2) << 32) ? 2 * kOne : static_cast<uint64_t>(vis);
+  RefineReceiver(r, source, vis_q32, reverse);
+}
+
+void SurfaceEmitterRefine::SendSubtree(uint32_t node, int64_t (*scratch)[3]) {
+  const Source source{node, scratch, Corners(node, scratch), static_cast<uint64_t>(kOne), false};
+  for (uint32_t e = send_offsets_[node]; e < send_offsets_[node + 1]; ++e) SendLink(source, send_[e]);
   const uint32_t first = h_->node_first_child[node];
-  for (uint32_t c = first; c < first + h_->node_child_count[node]; ++c) SendSubtree(c);
+  for (uint32_t c = first; c < first + h_->node_child_count[node]; ++c) SendSubtree(c, scratch);
 }
 
 Status SurfaceEmitterRefine::FirstShot(uint32_t root, const SurfaceEmitterShape& shape, const int64_t* coverage_q32,
@@ -248,19 +321,23 @@ Status SurfaceEmitterRefine::FirstShot(uint32_t root, const SurfaceEmitterShape&
   uint32_t stack[kStackNodes];
   int depth = 0;
   stack[depth++] = root;
-  size_t needed = 0;
+  needed_ = 0;
   int64_t clipped[kMaxFactorPolygonCorners][3];
   while (depth > 0) {
     const uint32_t s = stack[--depth];
     if (coverage_mean_q32_[s] <= 0) continue;
     if (coverage_mean_q32_[s] >= kOne) {
-      SendSubtree(s);
+      SendSubtree(s, clipped);
       continue;
     }
     const int count = clip.Clip(h, *mesh_, s, clipped);
-    for (uint32_t e = send_offsets_[s]; e < send_offsets_[s + 1]; ++e, ++needed) {
-      if (needed >= pool_.size()) continue;  // over: count what it would need
-      pool_[needed] = {send_[e], count == 0 ? 0u : RatioQ32(send_[e], clipped, count, s)};
+    const Source source{s, clipped, count, static_cast<uint64_t>(coverage_mean_q32_[s]), true};
+    for (uint32_t e = send_offsets_[s]; e < send_offsets_[s + 1]; ++e) {
+      if (count == 0) {
+        Send(send_[e], source.coverage_q32);  // a sliver the clip lost
+      } else {
+        SendLink(source, send_[e]);
+      }
     }
     const uint32_t first = h.node_first_child[s];
     for (uint32_t c = first; c < first + h.node_child_count[s]; ++c) {
@@ -268,14 +345,19 @@ Status SurfaceEmitterRefine::FirstShot(uint32_t root, const SurfaceEmitterShape&
       stack[depth++] = c;
     }
   }
-  if (needed > pool_.size()) {
+  if (needed_ > pool_.size()) {
     return Status(StatusCode::kOutOfRange,
                   StrFormat("surface emitter (adaptive refine): the polygon needs %zu new links, more than "
                             "the %zu the refine pool holds (EngineOptions::emitter_refine_links)",
-                            needed, pool_.size()));
+                            needed_, pool_.size()));
   }
-  for (size_t i = 0; i < needed; ++i) Send(pool_[i].link_side, pool_[i].ratio_q32);
-  last_links_ = static_cast<int>(needed);
+  for (size_t i = 0; i < needed_; ++i) {
+    const NewLink& l = pool_[i];
+    e0_[l.receiver] = AddSat64(e0_[l.receiver], l.e0_q32);
+    eu_[l.receiver] = AddSat64(eu_[l.receiver], l.eu_q32);
+    ev_[l.receiver] = AddSat64(ev_[l.receiver], l.ev_q32);
+  }
+  last_links_ = static_cast<int>(needed_);
   // Push down as the solver does: each node's field about its surface's
   // origin, a child adds its parent's, a leaf takes the field at its centroid.
   for (uint32_t k = 0; k < n; ++k) {

@@ -50,14 +50,28 @@ class SurfaceEmitterRefine {
   int pool_links() const { return static_cast<int>(pool_.size()); }
 
  private:
+  // A link the refinement made: irradiance on `receiver` per unit exitance
+  // of the emitter (Q32), and its gradient (Q32 per metre, about the
+  // receiver's centroid, zero where the receiver was refined).
   struct NewLink {
-    uint32_t link_side;  // 2 * link index + 1 when the source is the link's p
-    uint32_t ratio_q32;  // f' / f, 2^32 = 1 (saturated below)
+    uint32_t receiver;
+    int64_t e0_q32, eu_q32, ev_q32;
+  };
+  // The emitting polygon of one source node and its covered fraction.
+  struct Source {
+    uint32_t node;
+    const int64_t (*poly)[3];
+    int count;
+    uint64_t coverage_q32;
+    bool partial;
   };
   void Send(uint32_t link_side, uint64_t ratio_q32);
-  void SendSubtree(uint32_t node);
-  uint32_t RatioQ32(uint32_t link_side, const int64_t (*clipped)[3], int clipped_count,
-                    uint32_t source) const;
+  void SendLink(const Source& source, uint32_t link_side);
+  void SendSubtree(uint32_t node, int64_t (*scratch)[3]);
+  uint64_t SumFactorsQ32(uint32_t receiver, const int64_t (*poly)[3], int count) const;
+  void RefineReceiver(uint32_t node, const Source& source, uint64_t visibility_q32, uint64_t reverse_q32);
+  void Add(uint32_t receiver, int64_t e0, int64_t eu, int64_t ev);
+  int Corners(uint32_t node, int64_t (*out)[3]) const;
 
   const BakeHierarchy* h_ = nullptr;
   const BakeMesh* mesh_ = nullptr;
@@ -69,7 +83,9 @@ class SurfaceEmitterRefine {
   std::vector<uint32_t> send_offsets_, send_;  // per source node: link sides it sends through
   std::vector<int64_t> coverage_mean_q32_, e0_, eu_, ev_;
   std::vector<NewLink> pool_;
-  int used_ = 0, last_links_ = 0;
+  uint64_t refine_threshold_q32_ = 0;
+  size_t needed_ = 0;
+  int last_links_ = 0;
 };
 
 }  // namespace relight
