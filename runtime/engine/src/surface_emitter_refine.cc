@@ -111,6 +111,8 @@ Status SurfaceEmitterRefine::Open(const Bake& bake, int pool_links) {
   centre_uv_q16_.assign(size_t{n} * 2, 0);
   normal_q30_.assign(bake.mesh.surface_names.size() * 3, 0);
   drop_axis_.assign(bake.mesh.surface_names.size(), 0);
+  frame_u_q30_.assign(bake.mesh.surface_names.size() * 3, 0);
+  frame_v_q30_.assign(bake.mesh.surface_names.size() * 3, 0);
   tree_end_.assign(n, 0);
   SurfaceFrameQ30 frame{};
   uint32_t root = 0;
@@ -120,6 +122,10 @@ Status SurfaceEmitterRefine::Open(const Bake& bake, int pool_links) {
       root = k;
       MakeSurfaceFrameQ30(h, bake.mesh, k, &frame);
       const size_t s = h.node_surface[k];
+      for (int i = 0; i < 3; ++i) {
+        frame_u_q30_[3 * s + static_cast<size_t>(i)] = frame.u_q30[i];
+        frame_v_q30_[3 * s + static_cast<size_t>(i)] = frame.v_q30[i];
+      }
       Int128 normal[3];
       NodeNormalQ32(h, bake.mesh, k, normal);
       UnitNormal(normal, &normal_q30_[3 * s]);
@@ -176,16 +182,46 @@ int SurfaceEmitterRefine::Corners(uint32_t node, int64_t (*out)[3]) const {
 // Sum of F from the receiver's quadrature points to the polygon: half way
 // from its centroid to each corner (a quad's 2 x 2 bilinear midpoints when it
 // is a parallelogram), so the mean is this over the corner count.
-uint64_t SurfaceEmitterRefine::SumFactorsQ32(uint32_t receiver, const int64_t (*poly)[3], int count) const {
+uint64_t SurfaceEmitterRefine::SumFactorsQ32(uint32_t receiver, const int64_t (*poly)[3], int count,
+                                             int64_t gradient_q32[2]) const {
   const BakeHierarchy& h = *h_;
-  const int32_t* n = &normal_q30_[3 * size_t{h.node_surface[receiver]}];
+  const size_t surface = h.node_surface[receiver];
+  const int32_t* n = &normal_q30_[3 * surface];
   const int64_t* c = &centroid_q16_[3 * size_t{receiver}];
+  const int corners = h.node_corner_count[receiver];
   uint64_t sum = 0;
-  for (int k = 0; k < h.node_corner_count[receiver]; ++k) {
+  uint32_t value[kBakeMaxNodeCorners];
+  int64_t d[kBakeMaxNodeCorners][2];  // point - centroid along u, v: Q8 metres
+  for (int k = 0; k < corners; ++k) {
     const int32_t* corner = CornerQ16(h, *mesh_, receiver, k);
     const int64_t x[3] = {(c[0] + corner[0]) / 2, (c[1] + corner[1]) / 2, (c[2] + corner[2]) / 2};
-    sum += PointToPolygonFactorQ32(x, n, poly, count);
+    value[k] = PointToPolygonFactorQ32(x, n, poly, count);
+    sum += value[k];
+    for (int a = 0; a < 2; ++a) {
+      const int32_t* axis = a == 0 ? &frame_u_q30_[3 * surface] : &frame_v_q30_[3 * surface];
+      const Int128 dot = static_cast<Int128>(x[0] - c[0]) * axis[0] + static_cast<Int128>(x[1] - c[1]) * axis[1] +
+                         static_cast<Int128>(x[2] - c[2]) * axis[2];
+      d[k][a] = RoundShiftSat64(dot, -38);  // Q16 x Q30 -> Q8
+    }
   }
+  if (gradient_q32 == nullptr) return sum;
+  // Least squares: G = M^-1 sum_k d_k (v_k - mean), M = sum_k d_k d_k^T.
+  // d < 2^23 (Q8, < 32 km), so M < 2^49, det < 2^99; values - mean < 2^33.
+  const int64_t mean = static_cast<int64_t>(sum / static_cast<uint64_t>(corners));
+  Int128 m00 = 0, m01 = 0, m11 = 0, b0 = 0, b1 = 0;
+  for (int k = 0; k < corners; ++k) {
+    m00 += static_cast<Int128>(d[k][0]) * d[k][0];
+    m01 += static_cast<Int128>(d[k][0]) * d[k][1];
+    m11 += static_cast<Int128>(d[k][1]) * d[k][1];
+    b0 += static_cast<Int128>(d[k][0]) * (int64_t{value[k]} - mean);
+    b1 += static_cast<Int128>(d[k][1]) * (int64_t{value[k]} - mean);
+  }
+  const Int128 det = m00 * m11 - m01 * m01;
+  gradient_q32[0] = gradient_q32[1] = 0;
+  if (det <= 0) return sum;
+  // adj(M) b < 2^49 x 2^59; / det gives Q32 per Q8 metre, x 2^8 per metre.
+  gradient_q32[0] = RoundShiftSat64(DivRound((m11 * b0 - m01 * b1) * 256, det), 0);
+  gradient_q32[1] = RoundShiftSat64(DivRound((m00 * b1 - m01 * b0) * 256, det), 0);
   return sum;
 }
 
@@ -222,9 +258,14 @@ void SurfaceEmitterRefine::RefineReceiver(uint32_t node, const Source& source, u
     return;
   }
   if (needed_ >= pool_.size()) return Add(node, 0, 0, 0);
-  const uint64_t sum = SumFactorsQ32(node, source.poly, source.count);
+  // An inner node left here keeps the light's slope over it, as a stored
+  // link's gradient does; a leaf takes its mean.
+  int64_t slope[2] = {0, 0};
+  const uint64_t sum = SumFactorsQ32(node, source.poly, source.count, h.leaf(node) ? nullptr : slope);
   const uint64_t mean = sum / static_cast<uint64_t>(h.node_corner_count[node]);
-  Add(node, RoundShiftSat64(static_cast<Int128>(mean) * visibility_q32, -32), 0, 0);
+  Add(node, RoundShiftSat64(static_cast<Int128>(mean) * visibility_q32, -32),
+      RoundShiftSat64(static_cast<Int128>(slope[0]) * visibility_q32, -32),
+      RoundShiftSat64(static_cast<Int128>(slope[1]) * visibility_q32, -32));
 }
 
 // One link of an emitting node: FE's share where it carries little of the

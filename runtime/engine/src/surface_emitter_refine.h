@@ -68,7 +68,10 @@ class SurfaceEmitterRefine {
   void Send(uint32_t link_side, uint64_t ratio_q32);
   void SendLink(const Source& source, uint32_t link_side);
   void SendSubtree(uint32_t node, int64_t (*scratch)[3]);
-  uint64_t SumFactorsQ32(uint32_t receiver, const int64_t (*poly)[3], int count) const;
+  // Sum of F from the receiver's quadrature points to the polygon; with
+  // `gradient`, also the least-squares slope of F over them (Q32 per metre).
+  uint64_t SumFactorsQ32(uint32_t receiver, const int64_t (*poly)[3], int count,
+                         int64_t gradient_q32[2] = nullptr) const;
   void RefineReceiver(uint32_t node, const Source& source, uint64_t visibility_q32, uint64_t reverse_q32);
   void Add(uint32_t receiver, int64_t e0, int64_t eu, int64_t ev);
   int Corners(uint32_t node, int64_t (*out)[3]) const;
@@ -78,6 +81,7 @@ class SurfaceEmitterRefine {
   std::vector<int64_t> centroid_q16_;     // 3 per node, metres
   std::vector<int32_t> centre_uv_q16_;    // 2 per node, the gradients' surface frame
   std::vector<int32_t> normal_q30_;       // 3 per surface
+  std::vector<int32_t> frame_u_q30_, frame_v_q30_;  // 3 per surface: the gradients' axes
   std::vector<uint8_t> drop_axis_;        // per surface: the normal's largest axis
   std::vector<uint32_t> tree_end_;        // per node that is a root: one past its tree
   std::vector<uint32_t> send_offsets_, send_;  // per source node: link sides it sends through
