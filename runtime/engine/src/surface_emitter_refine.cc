@@ -1,19 +1,16 @@
 // Adaptive refine (surface_emitter_refine.h).
 //
-// Scaling and overflow: positions Q16.16 metres in int64. The emitter and a
-// node's corners are compared in the surface's plane projected along its
-// normal's largest axis: a side test is (edge, < 2^33) x (point - start,
-// < 2^33) < 2^67 in Int128; a crossing moves a corner by (p - s) ds /
-// (ds - dp), < 2^33 x 2^67 in Int128. Factors UQ0.32 summed over <= 6
-// points in uint64. A ratio is UQ0.32 (<= 1: the clipped polygon lies inside
+// Scaling and overflow: positions Q16.16 metres in int64 (the clip:
+// emitter_clip3.h). Factors UQ0.32 summed over <= 6 points in uint64. A ratio is UQ0.32 (<= 1: the clipped polygon lies inside
 // the node's). f (UQ0.32) x ratio -> Q32 irradiance per unit exitance;
 // g (Q8.23 per metre) x ratio (Q32) >> 23 -> Q32 per metre, as the solver's
 // gathers (surface_emitter_solve.cc). Coverage means: area (Q32.32 m^2,
 // < 2^64) x fraction (<= 2^32) summed over <= 4 children, < 2^98.
 #include "surface_emitter_refine.h"
 
-#include <cstdlib>
+#include <algorithm>
 
+#include "emitter_clip3.h"
 #include "point_polygon_factor.h"
 #include "relight/base/fixed_math.h"
 #include "relight/base/fixed_ops.h"
@@ -24,8 +21,12 @@ namespace {
 
 constexpr int64_t kOne = int64_t{1} << 32;
 constexpr int kStackNodes = 1024;
-// A partly covered node's link is refined when it carries more than this of
-// the emitter's exitance (F x covered fraction, UQ0.32): 2^-10.
+// Receivers further than this many of their radii from the polygon take the
+// factor at their centroid only.
+constexpr int64_t kFarRadii = 4;
+// BF's threshold on F x B for the emitter's light, B its covered fraction
+// (UQ0.32): 2^-10 of its exitance. Measured (docs/hierarchy.md, "AR"):
+// 2^-11 halves the living room's remaining mean error at 2-3x the new links.
 constexpr uint64_t kRefineThresholdQ32 = uint64_t{1} << 22;
 
 const int32_t* CornerQ16(const BakeHierarchy& h, const BakeMesh& mesh, uint32_t node, int k) {
@@ -50,53 +51,6 @@ void UnitNormal(const Int128 normal[3], int32_t out_q30[3]) {
   }
   NormaliseQ30(v, out_q30);
 }
-
-// The emitter in the surface's projected plane, counter-clockwise, and the
-// node polygons it cuts, corners in 3D.
-struct EmitterClip {
-  int a = 0, b = 1, count = 0;
-  int64_t e[kMaxSurfaceEmitterCorners][2];
-
-  Int128 Side(int k, const int64_t* p) const {
-    const int64_t* s = e[k];
-    const int64_t* t = e[(k + 1) % count];
-    return static_cast<Int128>(t[0] - s[0]) * (p[b] - s[1]) - static_cast<Int128>(t[1] - s[1]) * (p[a] - s[0]);
-  }
-  // Sutherland-Hodgman of the node's polygon by each emitter edge; returns
-  // the corner count (0 when nothing is left).
-  int Clip(const BakeHierarchy& h, const BakeMesh& mesh, uint32_t node, int64_t (*out)[3]) const {
-    int64_t poly[kMaxFactorPolygonCorners][3], next[kMaxFactorPolygonCorners][3];
-    int n = h.node_corner_count[node];
-    for (int k = 0; k < n; ++k)
-      for (int i = 0; i < 3; ++i) poly[k][i] = CornerQ16(h, mesh, node, k)[i];
-    for (int edge = 0; edge < count && n > 0; ++edge) {
-      int m = 0;
-      for (int k = 0; k < n; ++k) {
-        const int64_t* s = poly[(k + n - 1) % n];
-        const int64_t* p = poly[k];
-        const Int128 ds = Side(edge, s), dp = Side(edge, p);
-        // A convex node cut by a convex emitter has at most 6 + 8 corners.
-        if ((ds < 0) != (dp < 0) && m < kMaxFactorPolygonCorners) {
-          const Int128 den = ds - dp, sign = den < 0 ? -1 : 1;
-          for (int i = 0; i < 3; ++i)
-            next[m][i] = s[i] + static_cast<int64_t>(DivRound(static_cast<Int128>(p[i] - s[i]) * ds * sign, den * sign));
-          ++m;
-        }
-        if (dp >= 0 && m < kMaxFactorPolygonCorners) {
-          for (int i = 0; i < 3; ++i) next[m][i] = p[i];
-          ++m;
-        }
-      }
-      for (int k = 0; k < m; ++k)
-        for (int i = 0; i < 3; ++i) poly[k][i] = next[k][i];
-      n = m;
-    }
-    if (n < 3) return 0;
-    for (int k = 0; k < n; ++k)
-      for (int i = 0; i < 3; ++i) out[k][i] = poly[k][i];
-    return n;
-  }
-};
 
 }  // namespace
 
@@ -149,6 +103,11 @@ Status SurfaceEmitterRefine::Open(const Bake& bake, int pool_links) {
       centroid_q16_[3 * size_t{k} + i] = c0[i] + (weight == 0 ? 0 : static_cast<int64_t>(DivRound(sum[i], 3 * (weight < 0 ? -weight : weight)) * (weight < 0 ? -1 : 1)));
   }
   if (n > 0) tree_end_[root] = n;
+  receiver_radius_q16_.assign(n, 0);
+  for (uint32_t k = 0; k < n; ++k) {
+    int64_t corners[kBakeMaxNodeCorners][3], centre[3];
+    Bound(corners, Corners(k, corners), centre, &receiver_radius_q16_[k]);
+  }
   // Per source node, the link sides its light leaves through.
   send_offsets_.assign(size_t{n} + 1, 0);
   for (uint32_t i = 0; i < h.link_count(); ++i) {
@@ -168,7 +127,6 @@ Status SurfaceEmitterRefine::Open(const Bake& bake, int pool_links) {
   ev_.assign(n, 0);
   pool_.assign(static_cast<size_t>(pool_links), NewLink{0, 0, 0, 0});
   refine_threshold_q32_ = kRefineThresholdQ32;
-  if (const char* t = std::getenv("RELIGHT_AR_THRESHOLD_Q32")) refine_threshold_q32_ = std::strtoull(t, nullptr, 10);
   return Status::Ok();
 }
 
@@ -179,16 +137,49 @@ int SurfaceEmitterRefine::Corners(uint32_t node, int64_t (*out)[3]) const {
   return count;
 }
 
+// The centre of a polygon's corners and their largest distance from it.
+void SurfaceEmitterRefine::Bound(const int64_t (*poly)[3], int count, int64_t centre[3], int64_t* radius) {
+  for (int i = 0; i < 3; ++i) centre[i] = 0;
+  for (int k = 0; k < count; ++k)
+    for (int i = 0; i < 3; ++i) centre[i] += poly[k][i];
+  for (int i = 0; i < 3; ++i) centre[i] = count == 0 ? 0 : centre[i] / count;
+  UInt128 largest = 0;
+  for (int k = 0; k < count; ++k) {
+    Int128 d2 = 0;
+    for (int i = 0; i < 3; ++i) d2 += static_cast<Int128>(poly[k][i] - centre[i]) * (poly[k][i] - centre[i]);
+    largest = std::max(largest, static_cast<UInt128>(d2));
+  }
+  *radius = static_cast<int64_t>(ISqrt128(largest));
+}
+
+// True when the receiver's centroid is further from the polygon's nearest
+// possible point (its bound) than kFarRadii of the receiver's radius.
+// Squares of Q16.16 differences (< 2^33) in Int128.
+bool SurfaceEmitterRefine::Far(uint32_t receiver, const int64_t centre[3], int64_t radius) const {
+  const int64_t* c = &centroid_q16_[3 * size_t{receiver}];
+  Int128 d2 = 0;
+  for (int i = 0; i < 3; ++i) d2 += static_cast<Int128>(c[i] - centre[i]) * (c[i] - centre[i]);
+  const Int128 reach = static_cast<Int128>(radius) + kFarRadii * receiver_radius_q16_[receiver];
+  return d2 > reach * reach;
+}
+
 // Sum of F from the receiver's quadrature points to the polygon: half way
 // from its centroid to each corner (a quad's 2 x 2 bilinear midpoints when it
 // is a parallelogram), so the mean is this over the corner count.
 uint64_t SurfaceEmitterRefine::SumFactorsQ32(uint32_t receiver, const int64_t (*poly)[3], int count,
+                                             const int64_t centre[3], int64_t radius,
                                              int64_t gradient_q32[2]) const {
   const BakeHierarchy& h = *h_;
   const size_t surface = h.node_surface[receiver];
   const int32_t* n = &normal_q30_[3 * surface];
   const int64_t* c = &centroid_q16_[3 * size_t{receiver}];
   const int corners = h.node_corner_count[receiver];
+  if (gradient_q32 == nullptr && Far(receiver, centre, radius)) {
+    // Far from the polygon the factor is nearly linear over the receiver:
+    // its centroid alone gives the mean (a quarter of the kernel's cost).
+    const int64_t x[3] = {c[0], c[1], c[2]};
+    return uint64_t{PointToPolygonFactorQ32(x, n, poly, count)} * static_cast<uint64_t>(corners);
+  }
   uint64_t sum = 0;
   uint32_t value[kBakeMaxNodeCorners];
   int64_t d[kBakeMaxNodeCorners][2];  // point - centroid along u, v: Q8 metres
@@ -197,6 +188,7 @@ uint64_t SurfaceEmitterRefine::SumFactorsQ32(uint32_t receiver, const int64_t (*
     const int64_t x[3] = {(c[0] + corner[0]) / 2, (c[1] + corner[1]) / 2, (c[2] + corner[2]) / 2};
     value[k] = PointToPolygonFactorQ32(x, n, poly, count);
     sum += value[k];
+    if (gradient_q32 == nullptr) continue;
     for (int a = 0; a < 2; ++a) {
       const int32_t* axis = a == 0 ? &frame_u_q30_[3 * surface] : &frame_v_q30_[3 * surface];
       const Int128 dot = static_cast<Int128>(x[0] - c[0]) * axis[0] + static_cast<Int128>(x[1] - c[1]) * axis[1] +
@@ -261,7 +253,8 @@ void SurfaceEmitterRefine::RefineReceiver(uint32_t node, const Source& source, u
   // An inner node left here keeps the light's slope over it, as a stored
   // link's gradient does; a leaf takes its mean.
   int64_t slope[2] = {0, 0};
-  const uint64_t sum = SumFactorsQ32(node, source.poly, source.count, h.leaf(node) ? nullptr : slope);
+  const uint64_t sum =
+      SumFactorsQ32(node, source.poly, source.count, source.centre, source.radius, h.leaf(node) ? nullptr : slope);
   const uint64_t mean = sum / static_cast<uint64_t>(h.node_corner_count[node]);
   Add(node, RoundShiftSat64(static_cast<Int128>(mean) * visibility_q32, -32),
       RoundShiftSat64(static_cast<Int128>(slope[0]) * visibility_q32, -32),
@@ -288,12 +281,15 @@ void SurfaceEmitterRefine::SendLink(const Source& source, uint32_t link_side) {
     if (!refine_receiver) return Add(r, 0, 0, 0);
     return RefineReceiver(r, source, 0, reverse);
   }
-  int64_t whole[kBakeMaxNodeCorners][3];
+  int64_t whole[kBakeMaxNodeCorners][3], whole_centre[3], whole_radius = 0;
   const int whole_count = Corners(source.node, whole);
-  const uint64_t den = SumFactorsQ32(r, whole, whole_count);
+  Bound(whole, whole_count, whole_centre, &whole_radius);
+  const uint64_t den = SumFactorsQ32(r, whole, whole_count, whole_centre, whole_radius);
   // The receiver sees the node only edge-on at its points: keep FE's share.
   if (den == 0) return Send(link_side, cov);
-  const uint64_t num = source.partial ? SumFactorsQ32(r, source.poly, source.count) : den;
+  // The same points for both, so the ratio is the emitter's share as r sees it.
+  const uint64_t num =
+      source.partial ? SumFactorsQ32(r, source.poly, source.count, whole_centre, whole_radius) : den;
   if (!refine_receiver) {
     const UInt128 ratio = (static_cast<UInt128>(num) << 32) / den;
     const int32_t* g = from_p ? &h.link_g_qp[2 * size_t{link}] : &h.link_g_pq[2 * size_t{link}];
@@ -311,7 +307,8 @@ void SurfaceEmitterRefine::SendLink(const Source& source, uint32_t link_side) {
 }
 
 void SurfaceEmitterRefine::SendSubtree(uint32_t node, int64_t (*scratch)[3]) {
-  const Source source{node, scratch, Corners(node, scratch), static_cast<uint64_t>(kOne), false};
+  Source source{node, scratch, Corners(node, scratch), static_cast<uint64_t>(kOne), false, {0, 0, 0}, 0};
+  Bound(source.poly, source.count, source.centre, &source.radius);
   for (uint32_t e = send_offsets_[node]; e < send_offsets_[node + 1]; ++e) SendLink(source, send_[e]);
   const uint32_t first = h_->node_first_child[node];
   for (uint32_t c = first; c < first + h_->node_child_count[node]; ++c) SendSubtree(c, scratch);
@@ -333,29 +330,8 @@ Status SurfaceEmitterRefine::FirstShot(uint32_t root, const SurfaceEmitterShape&
       sum += static_cast<Int128>(h.node_area[c]) * coverage_mean_q32_[c];
     coverage_mean_q32_[k] = h.node_area[k] == 0 ? 0 : static_cast<int64_t>(sum / h.node_area[k]);
   }
-  EmitterClip clip;
-  const int drop = drop_axis_[h.node_surface[root]];
-  clip.a = (drop + 1) % 3;
-  clip.b = (drop + 2) % 3;
-  clip.count = shape.corner_count;
-  Int128 twice_area = 0;
-  for (int k = 0; k < shape.corner_count; ++k) {
-    clip.e[k][0] = shape.corners_q16[k][clip.a];
-    clip.e[k][1] = shape.corners_q16[k][clip.b];
-  }
-  for (int k = 0; k < shape.corner_count; ++k) {
-    const int64_t* p = clip.e[k];
-    const int64_t* q = clip.e[(k + 1) % shape.corner_count];
-    twice_area += static_cast<Int128>(p[0]) * q[1] - static_cast<Int128>(q[0]) * p[1];
-  }
-  if (twice_area < 0) {
-    for (int i = 0, j = shape.corner_count - 1; i < j; ++i, --j)
-      for (int d = 0; d < 2; ++d) {
-        const int64_t t = clip.e[i][d];
-        clip.e[i][d] = clip.e[j][d];
-        clip.e[j][d] = t;
-      }
-  }
+  EmitterClip3 clip;
+  clip.Set(shape, drop_axis_[h.node_surface[root]]);
   for (uint32_t k = 0; k < n; ++k) e0_[k] = eu_[k] = ev_[k] = 0;
   // Fig. 5 from the root: fully covered subtrees send as they are; a partly
   // covered node's links get new factors for its clipped part.
@@ -372,7 +348,8 @@ Status SurfaceEmitterRefine::FirstShot(uint32_t root, const SurfaceEmitterShape&
       continue;
     }
     const int count = clip.Clip(h, *mesh_, s, clipped);
-    const Source source{s, clipped, count, static_cast<uint64_t>(coverage_mean_q32_[s]), true};
+    Source source{s, clipped, count, static_cast<uint64_t>(coverage_mean_q32_[s]), true, {0, 0, 0}, 0};
+    Bound(source.poly, source.count, source.centre, &source.radius);
     for (uint32_t e = send_offsets_[s]; e < send_offsets_[s + 1]; ++e) {
       if (count == 0) {
         Send(send_[e], source.coverage_q32);  // a sliver the clip lost

@@ -34,7 +34,7 @@ namespace relight {
 
 class SurfaceEmitterRefine {
  public:
-  // pool_links: new links one placement may make (kSurfaceEmitterRefinePoolLinks by default).
+  // pool_links: new links one placement may make (kDefaultSurfaceEmitterRefineLinks by default).
   Status Open(const Bake& bake, int pool_links);
   // First-shot irradiance on every leaf, Q32 lux per lm/m^2 the emitter
   // leaves (its surface's unit exitance), from the emitter `shape` on the
@@ -64,14 +64,18 @@ class SurfaceEmitterRefine {
     int count;
     uint64_t coverage_q32;
     bool partial;
+    int64_t centre[3], radius;  // Bound() of poly
   };
+  static void Bound(const int64_t (*poly)[3], int count, int64_t centre[3], int64_t* radius);
   void Send(uint32_t link_side, uint64_t ratio_q32);
   void SendLink(const Source& source, uint32_t link_side);
   void SendSubtree(uint32_t node, int64_t (*scratch)[3]);
   // Sum of F from the receiver's quadrature points to the polygon; with
   // `gradient`, also the least-squares slope of F over them (Q32 per metre).
-  uint64_t SumFactorsQ32(uint32_t receiver, const int64_t (*poly)[3], int count,
-                         int64_t gradient_q32[2] = nullptr) const;
+  // centre, radius: Bound() of the polygon the points are compared with.
+  uint64_t SumFactorsQ32(uint32_t receiver, const int64_t (*poly)[3], int count, const int64_t centre[3],
+                         int64_t radius, int64_t gradient_q32[2] = nullptr) const;
+  bool Far(uint32_t receiver, const int64_t centre[3], int64_t radius) const;
   void RefineReceiver(uint32_t node, const Source& source, uint64_t visibility_q32, uint64_t reverse_q32);
   void Add(uint32_t receiver, int64_t e0, int64_t eu, int64_t ev);
   int Corners(uint32_t node, int64_t (*out)[3]) const;
@@ -79,6 +83,7 @@ class SurfaceEmitterRefine {
   const BakeHierarchy* h_ = nullptr;
   const BakeMesh* mesh_ = nullptr;
   std::vector<int64_t> centroid_q16_;     // 3 per node, metres
+  std::vector<int64_t> receiver_radius_q16_;  // per node: its corners' largest distance from their centre
   std::vector<int32_t> centre_uv_q16_;    // 2 per node, the gradients' surface frame
   std::vector<int32_t> normal_q30_;       // 3 per surface
   std::vector<int32_t> frame_u_q30_, frame_v_q30_;  // 3 per surface: the gradients' axes
@@ -87,7 +92,7 @@ class SurfaceEmitterRefine {
   std::vector<uint32_t> send_offsets_, send_;  // per source node: link sides it sends through
   std::vector<int64_t> coverage_mean_q32_, e0_, eu_, ev_;
   std::vector<NewLink> pool_;
-  uint64_t refine_threshold_q32_ = 0;
+  uint64_t refine_threshold_q32_ = 0;  // kRefineThresholdQ32
   size_t needed_ = 0;
   int last_links_ = 0;
 };

@@ -90,7 +90,8 @@ void HierarchySolveQ32::Pull(uint32_t begin, uint32_t end, int64_t* b) const {
   }
 }
 
-int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, int64_t* b, const int64_t* first_shot_q32) {
+int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, int64_t* b, const int64_t* first_shot_q32,
+                                int64_t peak_floor_q32) {
   const BakeHierarchy& h = *h_;
   const uint32_t n = h.node_count();
   for (uint32_t k = 0; k < n; ++k)
@@ -101,7 +102,7 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, int64_t* b, const in
   int sweep = 0;
   while (sweep < kEmitterSolveMaxSweeps) {
     ++sweep;
-    int64_t change = 0, peak = 0;
+    int64_t change = 0, peak = peak_floor_q32;
     for (size_t r = 0; r < runs; ++r) {
       const uint32_t begin = run_begin_[r], end = run_begin_[r + 1];
       for (uint32_t k = begin; k < end; ++k) {  // gather

@@ -37,8 +37,11 @@ class HierarchySolveQ32 {
   // the sweeps it took. first_shot_q32 (optional, per node, leaves only):
   // irradiance (Q32 lux per unit) the leaves receive besides what they
   // gather, e.g. adaptive refine's direct light from an emitter whose own
-  // exitance is then left out of emitted_q32.
-  int SolveRgb(const int64_t* emitted_q32, int64_t* exitance_q32, const int64_t* first_shot_q32 = nullptr);
+  // exitance is then left out of emitted_q32; peak_floor_q32: the stopping
+  // rule's peak exitance is at least this (that emitter's own exitance, so
+  // the solve stops where it would with the emitter in emitted_q32).
+  int SolveRgb(const int64_t* emitted_q32, int64_t* exitance_q32, const int64_t* first_shot_q32 = nullptr,
+               int64_t peak_floor_q32 = 0);
   uint32_t node_count() const { return static_cast<uint32_t>(child_weight_q32_.size()); }
 
  private:

@@ -114,7 +114,8 @@ int SurfaceEmitters::SolvePending() {
     if (s.refined) {
       // AR: the emitter's light reaches the leaves as the first shot; the
       // solve interreflects it, and the emitter's own exitance is added after.
-      last_sweeps_ += solver_.SolveRgb(no_emission_.data(), exitance_.data(), s.first_shot_q32.data());
+      last_sweeps_ += solver_.SolveRgb(no_emission_.data(), exitance_.data(), s.first_shot_q32.data(),
+                                       int64_t{1} << kCoverageFracBits);
       for (uint32_t k = 0; k < solver_.node_count(); ++k)
         for (int c = 0; c < 3; ++c)
           exitance_[3 * size_t{k} + c] = AddSat64(exitance_[3 * size_t{k} + c], s.coverage_q32[k]);
