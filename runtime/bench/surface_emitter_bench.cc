@@ -12,6 +12,9 @@
 //                         never straight back) + Update(): clip, a solve
 //                         starting from the previous one, vertices, mix
 //   BM_EmitterLuminance   SetSurfaceEmitterLuminance + Update(): a rescale
+//   (Place and Move10cm run with fractional emissivity, ar:0, and adaptive
+//   refine, ar:1: the refine's new link factors, surface_emitter_refine.h,
+//   then a first-shot solve; the others use FE)
 //   BM_EmitterRemove      RemoveSurfaceEmitter + Update(): the remix without it
 //   BM_EmitterPlaceOnly   SetSurfaceEmitter alone: the clip
 //
@@ -45,6 +48,14 @@ relight::Engine* g_engine = nullptr;
 relight::SurfaceEmitterShape g_place[3];  // far apart
 relight::SurfaceEmitterShape g_square[4];  // 10 cm apart
 double g_pan_median_ms = 0;
+
+// The shape with the method of the benchmark's argument: 0 FE, 1 AR.
+relight::SurfaceEmitterShape With(const relight::SurfaceEmitterShape& shape, const benchmark::State& state) {
+  relight::SurfaceEmitterShape s = shape;
+  s.method = state.range(0) == 1 ? relight::SurfaceEmitterMethod::kAdaptiveRefine
+                                 : relight::SurfaceEmitterMethod::kFractionalEmissivity;
+  return s;
+}
 
 const relight::LightQ12 kWhite[3] = {relight::LightQ12::FromRaw(1000 << 12),
                                      relight::LightQ12::FromRaw(1000 << 12),
@@ -109,7 +120,8 @@ void BM_EmitterPlace(benchmark::State& state) {
     // A new light: removed first (untimed), so the solve starts from the emission.
     (void)g_engine->RemoveSurfaceEmitter(0);
     g_engine->Update();
-    samples.Time(state, [&] { (void)g_engine->SetSurfaceEmitter(0, g_place[i++ % 3], kWhite); });
+    const relight::SurfaceEmitterShape shape = With(g_place[i++ % 3], state);
+    samples.Time(state, [&] { (void)g_engine->SetSurfaceEmitter(0, shape, kWhite); });
     sweeps = g_engine->last_update_emitter_sweeps();
   }
   samples.Report(state);
@@ -119,10 +131,11 @@ void BM_EmitterPlace(benchmark::State& state) {
 void BM_EmitterMove10cm(benchmark::State& state) {
   Samples samples;
   int i = 0, sweeps = 0;
-  (void)g_engine->SetSurfaceEmitter(0, g_square[0], kWhite);
+  (void)g_engine->SetSurfaceEmitter(0, With(g_square[0], state), kWhite);
   g_engine->Update();
   for (auto _ : state) {
-    samples.Time(state, [&] { (void)g_engine->SetSurfaceEmitter(0, g_square[++i % 4], kWhite); });
+    const relight::SurfaceEmitterShape shape = With(g_square[++i % 4], state);
+    samples.Time(state, [&] { (void)g_engine->SetSurfaceEmitter(0, shape, kWhite); });
     sweeps = g_engine->last_update_emitter_sweeps();
   }
   samples.Report(state);
@@ -159,8 +172,8 @@ void BM_EmitterPlaceOnly(benchmark::State& state) {
 }
 
 BENCHMARK(BM_PanChange)->UseManualTime()->Iterations(300)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_EmitterPlace)->UseManualTime()->Iterations(150)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_EmitterMove10cm)->UseManualTime()->Iterations(200)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EmitterPlace)->ArgName("ar")->Arg(0)->Arg(1)->UseManualTime()->Iterations(150)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EmitterMove10cm)->ArgName("ar")->Arg(0)->Arg(1)->UseManualTime()->Iterations(200)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EmitterLuminance)->UseManualTime()->Iterations(300)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EmitterRemove)->UseManualTime()->Iterations(300)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EmitterPlaceOnly)->Unit(benchmark::kMillisecond);
@@ -207,12 +220,14 @@ int main(int argc, char** argv) {
     double o[3];
     for (int i = 0; i < 3; ++i) o[i] = (s == 1 ? far * u[i] : 0) + (s == 2 ? far * w[i] : 0);
     g_place[s] = Shape(argv[2], c, o);
+    g_place[s].method = relight::SurfaceEmitterMethod::kFractionalEmissivity;
   }
   const double square[4][2] = {{0, 0}, {0.1, 0}, {0.1, 0.1}, {0, 0.1}};
   for (int s = 0; s < 4; ++s) {
     double o[3];
     for (int i = 0; i < 3; ++i) o[i] = square[s][0] * u[i] + square[s][1] * w[i];
     g_square[s] = Shape(argv[2], c, o);
+    g_square[s].method = relight::SurfaceEmitterMethod::kFractionalEmissivity;
   }
   for (const relight::SurfaceEmitterShape* s : {&g_place[0], &g_place[1], &g_place[2], &g_square[2]}) {
     if (relight::Status st = engine.SetSurfaceEmitter(0, *s, kWhite); !st.ok()) {

@@ -51,7 +51,8 @@ TEST(SurfaceEmitterSolve, MatchesTheBakersFloat64Solve) {
   DarkenLuminaires(&engine);
   const double luminance[3] = {200, 120, 45};  // cd/m^2, a warm white
   const LightQ12 light[3] = {Light(luminance[0]), Light(luminance[1]), Light(luminance[2])};
-  const SurfaceEmitterShape shape = MakeShape("ceiling", kCeilingEmitter);
+  SurfaceEmitterShape shape = MakeShape("ceiling", kCeilingEmitter);
+  shape.method = SurfaceEmitterMethod::kFractionalEmissivity;  // the reference is FE's emission
   ASSERT_TRUE(engine.SetSurfaceEmitter(0, shape, light).ok());
   engine.Update();
   EXPECT_EQ(engine.last_update_emitters_solved(), 1);

@@ -51,7 +51,7 @@ struct Engine::Impl {
   Status Allocate(const EngineOptions& options) {
     RELIGHT_RETURN_IF_ERROR(SetUpLuminaires(bake, &lums, &work));
     SizeOutputs(bake, &out, &mix);
-    RELIGHT_RETURN_IF_ERROR(emitters.Open(bake));
+    RELIGHT_RETURN_IF_ERROR(emitters.Open(bake, options.emitter_refine_links));
     StartEngineThreads(options.threads, work, lums.size(), &threads);
     return Status::Ok();
   }
@@ -318,6 +318,10 @@ int Engine::last_update_emitters_solved() const { return impl_ ? impl_->last_emi
 
 int Engine::last_update_emitter_sweeps() const {
   return impl_ ? impl_->emitters.last_sweeps() : 0;
+}
+
+int Engine::last_emitter_refine_links() const {
+  return impl_ ? impl_->emitters.last_refine_links() : 0;
 }
 
 namespace {

@@ -187,6 +187,21 @@ void HierarchySolveQ32::Pull(uint32_t begin, uint32_t end, int64_t* b, int32_t* 
   }
 }
 
+void HierarchySolveQ32::AddEmitted(const int64_t* emitted_q32, int64_t* b) {
+  const BakeHierarchy& h = *h_;
+  const uint32_t n = node_count();
+  int32_t* view = view_[0].data();
+  for (uint32_t k = 0; k < n; ++k) {
+    if (!h.leaf(k)) continue;
+    for (int ch = 0; ch < 3; ++ch) {
+      const size_t i = 3 * size_t{k} + ch;
+      b[i] = AddSat64(b[i], emitted_q32[k]);
+      view[4 * size_t{k} + ch] = ToView(b[i]);
+    }
+  }
+  for (size_t r = 0; r + 1 < run_begin_.size(); ++r) Pull(run_begin_[r], run_begin_[r + 1], b, view);
+}
+
 void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
   const BakeHierarchy& h = *h_;
   int32_t* view = view_[block].data();
@@ -261,7 +276,7 @@ void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
 }
 
 int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra_irradiance_q32,
-                                int64_t* b, WorkerPool* pool) {
+                                int64_t* b, WorkerPool* pool, int64_t peak_floor_q32) {
   const uint32_t n = node_count();
   const size_t runs = run_begin_.size() - 1;
   for (size_t r = 0; r < runs; ++r) Pull(run_begin_[r], run_begin_[r + 1], b, view_[0].data());
@@ -292,7 +307,7 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra
       for (int to = 0; to < kEmitterSolveBlocks; ++to)
         if (to != from) std::memcpy(&view_[to][lo], &view_[from][lo], (hi - lo) * sizeof(int32_t));
     }
-    int64_t change = 0, peak = 0;
+    int64_t change = 0, peak = peak_floor_q32;
     for (int k = 0; k < kEmitterSolveBlocks; ++k) {
       if (sweep.change[k] > change) change = sweep.change[k];
       if (sweep.peak[k] > peak) peak = sweep.peak[k];

@@ -60,9 +60,17 @@ class HierarchySolveQ32 {
   //                             do not have;
   //   exitance_q32[3 k + c]     in: where the sweeps start (zeros, the slot's
   //                             previous solution, a first shot); out: M.
-  // `pool` may be null (one thread). Returns the sweeps it took.
+  // `pool` may be null (one thread). peak_floor_q32: the stopping rule's
+  // peak exitance is at least this (adaptive refine passes its emitter's own
+  // exitance, which is then not in emitted_q32, so the solve stops where it
+  // would with the emitter in it). Returns the sweeps it took.
   int SolveRgb(const int64_t* emitted_q32, const int64_t* extra_irradiance_q32, int64_t* exitance_q32,
-               WorkerPool* pool);
+               WorkerPool* pool, int64_t peak_floor_q32 = 0);
+  // Adds emitted_q32 (per node, leaves only, the same in every channel) to
+  // the leaves of exitance_q32 and pulls the inner nodes up again;
+  // exitance_q24() follows. Adaptive refine solves without its emitter's
+  // own exitance (its first shot stands for it) and adds it after.
+  void AddEmitted(const int64_t* emitted_q32, int64_t* exitance_q32);
   // exitance_q32 as int32 Q24 (kGatherFracBits), 4 per node (channels 0-2
   // and a zero), as the last
   // SolveRgb left it: what LeavesToVertices reads.

@@ -22,13 +22,14 @@ Status NoHierarchy() {
 
 }  // namespace
 
-Status SurfaceEmitters::Open(const Bake& bake) {
+Status SurfaceEmitters::Open(const Bake& bake, int refine_links) {
   bake_ = &bake;
   vertex_count_ = bake.mesh.vertex_count();
   supported_ = bake.hierarchy.has_value();
   if (!supported_) return Status::Ok();
   // The hierarchy's indices were checked by the engine's ValidateBake.
   RELIGHT_RETURN_IF_ERROR(solver_.Init(bake));
+  RELIGHT_RETURN_IF_ERROR(refine_.Open(bake, refine_links));
   const BakeHierarchy& h = *bake.hierarchy;
   surface_root_.assign(bake.mesh.surface_names.size(), kBakeNoIndex);
   for (uint32_t k = 0; k < h.node_count(); ++k) {
@@ -37,11 +38,15 @@ Status SurfaceEmitters::Open(const Bake& bake) {
   }
   MakeVertexLeafWeights(h, vertex_count_, &vertex_weights_);
   coverage_scratch_.assign(h.node_count(), 0);
+  first_shot_scratch_.assign(h.node_count(), 0);
+  extra_.assign(size_t{h.node_count()} * 3, 0);
+  no_emission_.assign(h.node_count(), 0);
   for (Slot& s : slots_) {
     for (Solution* x : {&s.now, &s.before}) {
       x->coverage_q32.assign(h.node_count(), 0);
       x->exitance_q32.assign(size_t{h.node_count()} * 3, 0);
       x->unit_q24.assign(size_t{vertex_count_} * 3, 0);
+      x->first_shot_q32.assign(h.node_count(), 0);
     }
   }
   return Status::Ok();
@@ -72,16 +77,25 @@ Status SurfaceEmitters::Place(int slot, const SurfaceEmitterShape& shape) {
   if (!st.ok()) {
     return Status(st.code(), StrFormat("%s (surface '%s')", st.message().c_str(), shape.surface.c_str()));
   }
+  const bool refined = shape.method == SurfaceEmitterMethod::kAdaptiveRefine;
+  if (refined) {
+    RELIGHT_RETURN_IF_ERROR(refine_.FirstShot(surface_root_[surface], shape, coverage_scratch_.data(),
+                                              first_shot_scratch_.data()));
+  }
   Slot& s = slots_[slot];
   s.moved = s.placed;
   s.placed = true;
-  if (coverage_scratch_ == s.now.coverage_q32) return Status::Ok();  // where it is (or was)
-  if (s.before.solved && coverage_scratch_ == s.before.coverage_q32) {
+  // The same coverage and method give the same first shot, so the same solution.
+  const auto same = [&](const Solution& x) { return x.refined == refined && coverage_scratch_ == x.coverage_q32; };
+  if (same(s.now)) return Status::Ok();  // where it is (or was)
+  if (s.before.solved && same(s.before)) {
     std::swap(s.now, s.before);  // back where it came from: the stored bits
     return Status::Ok();
   }
   if (s.now.solved) std::swap(s.now, s.before);  // keep the last solved one to start from
   s.now.coverage_q32.swap(coverage_scratch_);
+  if (refined) s.now.first_shot_q32.swap(first_shot_scratch_);
+  s.now.refined = refined;
   s.now.solved = false;
   return Status::Ok();
 }
@@ -126,12 +140,14 @@ void SurfaceEmitters::StartFrom(const Slot& s, int64_t* b, bool* warm) const {
     for (uint32_t k = 0; k < n; ++k)
       for (int c = 0; c < 3; ++c) {
         const size_t i = 3 * size_t{k} + c;
-        b[i] = h.leaf(k) ? AddSat64(s.before.exitance_q32[i], now[k] - before[k]) : s.before.exitance_q32[i];
+        // Adaptive refine solves without its emitter's exitance (added after).
+        const int64_t emitted = s.now.refined ? 0 : now[k];
+        b[i] = h.leaf(k) ? AddSat64(s.before.exitance_q32[i], emitted - before[k]) : s.before.exitance_q32[i];
       }
     return;
   }
   for (uint32_t k = 0; k < n; ++k)  // the solver pulls the inner nodes up
-    for (int c = 0; c < 3; ++c) b[3 * size_t{k} + c] = h.leaf(k) ? now[k] : 0;
+    for (int c = 0; c < 3; ++c) b[3 * size_t{k} + c] = h.leaf(k) && !s.now.refined ? now[k] : 0;
 }
 
 int SurfaceEmitters::SolvePending(WorkerPool* pool) {
@@ -143,7 +159,19 @@ int SurfaceEmitters::SolvePending(WorkerPool* pool) {
     bool warm = false;
     StartFrom(s, s.now.exitance_q32.data(), &warm);
     last_warm_ += warm ? 1 : 0;
-    last_sweeps_ += solver_.SolveRgb(s.now.coverage_q32.data(), nullptr, s.now.exitance_q32.data(), pool);
+    const uint32_t n = solver_.node_count();
+    if (s.now.refined) {
+      // AR: the emitter's light reaches the leaves as the first shot; the
+      // solve interreflects it, stopping against the emitter's own unit
+      // exitance, and the emitter's exitance is added after.
+      for (uint32_t k = 0; k < n; ++k)
+        for (int c = 0; c < 3; ++c) extra_[3 * size_t{k} + c] = s.now.first_shot_q32[k];
+      last_sweeps_ += solver_.SolveRgb(no_emission_.data(), extra_.data(), s.now.exitance_q32.data(), pool,
+                                       int64_t{1} << kCoverageFracBits);
+      solver_.AddEmitted(s.now.coverage_q32.data(), s.now.exitance_q32.data());
+    } else {
+      last_sweeps_ += solver_.SolveRgb(s.now.coverage_q32.data(), nullptr, s.now.exitance_q32.data(), pool);
+    }
     // Unit luminance L = 1 cd/m^2 emits M = pi L; the vertex luminance is
     // exitance / pi, so the pi cancels: the unit-coverage solve is the answer.
     LeavesToVerticesQ24(vertex_weights_, vertex_count_, solver_.exitance_q24(), s.now.unit_q24.data());

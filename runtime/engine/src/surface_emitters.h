@@ -22,6 +22,7 @@
 #include "relight/base/fixed.h"
 #include "relight/base/status.h"
 #include "relight/engine/surface_emitter.h"
+#include "surface_emitter_refine.h"
 #include "surface_emitter_solve.h"
 #include "surface_emitter_vertices.h"
 #include "worker_pool.h"
@@ -30,13 +31,15 @@ namespace relight {
 
 class SurfaceEmitters {
  public:
-  // A bake without a hierarchy opens fine; every call then returns kUnsupported.
-  Status Open(const Bake& bake);
+  // A bake without a hierarchy opens fine; every call then returns
+  // kUnsupported. refine_links: the adaptive-refine pool (new links).
+  Status Open(const Bake& bake, int refine_links = kDefaultSurfaceEmitterRefineLinks);
 
   // Clips the shape against its surface and stores the coverage; the solve
   // runs at the next SolvePending(). kUnsupported (no hierarchy), kNotFound
   // (no surface of that name), kInvalidArgument (slot, or the shape: off the
-  // plane, not convex, not on the surface). On error nothing changes.
+  // plane, not convex, not on the surface), kOutOfRange (adaptive refine
+  // needs more new links than its pool holds). On error nothing changes.
   Status Place(int slot, const SurfaceEmitterShape& shape);
   // LightQ12 cd/m^2 per channel, >= 0. kInvalidArgument for a bad slot or value.
   Status SetLuminance(int slot, const LightQ12 rgb[3]);
@@ -51,6 +54,7 @@ class SurfaceEmitters {
   int last_sweeps() const { return last_sweeps_; }
   // Solves of the last SolvePending that started from the previous solution.
   int last_warm_starts() const { return last_warm_; }
+  int last_refine_links() const { return refine_.last_links(); }
 
  private:
   struct Solution {
@@ -58,6 +62,10 @@ class SurfaceEmitters {
     std::vector<int64_t> coverage_q32;  // per node, covered fraction of each leaf
     std::vector<int64_t> exitance_q32;  // 3 per node, per unit luminance
     std::vector<int32_t> unit_q24;      // 3 per vertex
+    bool refined = false;               // adaptive refine: first_shot_q32 holds its direct light
+    std::vector<int64_t> first_shot_q32;  // per node (leaves), AR only
+    // exitance_q32 of an AR solution includes the emitter's own exitance
+    // (coverage), added after the solve.
   };
   struct Slot {
     bool placed = false;
@@ -72,9 +80,12 @@ class SurfaceEmitters {
   bool supported_ = false;
   uint32_t vertex_count_ = 0;
   HierarchySolveQ32 solver_;
+  SurfaceEmitterRefine refine_;
   std::vector<uint32_t> surface_root_;  // per surface, kBakeNoIndex if it has no tree
   VertexLeafWeights vertex_weights_;
-  std::vector<int64_t> coverage_scratch_;
+  // first_shot_scratch_ per node; extra_ 3 per node (the first shot in every
+  // channel, as the solver takes it); no_emission_ per node, all 0.
+  std::vector<int64_t> coverage_scratch_, first_shot_scratch_, extra_, no_emission_;
   Slot slots_[kMaxSurfaceEmitters];
   int last_sweeps_ = 0, last_warm_ = 0;
 };

@@ -41,6 +41,9 @@ struct EngineOptions {
   // capped at 2. Each thread beyond the first costs a copy of the
   // engine's scratch (a few times the largest receiver set x 3 x 8 bytes).
   int threads = 0;
+  // New links one adaptive-refine emitter placement may make (8 bytes each,
+  // allocated at Open); a placement needing more is refused with kOutOfRange.
+  int emitter_refine_links = kDefaultSurfaceEmitterRefineLinks;
 };
 
 class Engine {
@@ -114,7 +117,8 @@ class Engine {
   FixtureState state(int luminaire) const;
 
   // Run-time light sources on surfaces (relight/surface_emitter.h; Chandran &
-  // Srivastava's fractional emissivity), in slots 0 .. kMaxSurfaceEmitters-1.
+  // Srivastava's fractional emissivity or adaptive refine, per shape), in
+  // slots 0 .. kMaxSurfaceEmitters-1.
   // SetSurfaceEmitter places or moves one and sets its luminance (LightQ12
   // cd/m^2 per channel): it clips the polygon against its surface's quadtree
   // now and re-solves radiosity over the bake's links at the next Update()
@@ -122,7 +126,9 @@ class Engine {
   // the grids (the bake has no links to grid points). Returns kUnsupported
   // (bake without a hierarchy), kNotFound (no such surface), kInvalidArgument
   // (slot, negative luminance, a corner off the surface's plane, a polygon
-  // not convex or not on the surface); on error nothing changes.
+  // not convex or not on the surface), kOutOfRange (adaptive refine needs
+  // more new links than EngineOptions::emitter_refine_links); on error
+  // nothing changes. Adaptive refine computes its new links here.
   Status SetSurfaceEmitter(int slot, const SurfaceEmitterShape& shape, const LightQ12 luminance[3]);
   // A dimmer or colour change: rescales the solved light, no clip or solve.
   // Both return kUnsupported (no hierarchy) or kInvalidArgument (slot; negative
@@ -149,6 +155,8 @@ class Engine {
   // Emitters solved by the last Update() and the sweeps they took (3 channels a sweep).
   int last_update_emitters_solved() const;
   int last_update_emitter_sweeps() const;
+  // New links the last adaptive-refine placement made.
+  int last_emitter_refine_links() const;
 
  private:
   struct Impl;

@@ -21,12 +21,25 @@ inline constexpr int kMaxSurfaceEmitterCorners = 8;
 // How far a corner may lie off the surface's plane: 2 mm (Q16.16 metres).
 inline constexpr int32_t kSurfaceEmitterPlaneToleranceQ16 = 131;
 
+// How an emitter's light leaves it (docs/hierarchy.md, "AR"):
+//  kFractionalEmissivity (FE): each stored node sends the emitter's covered
+//    fraction of it through its links, as if spread evenly over the node;
+//  kAdaptiveRefine (AR): partly covered nodes are refined to the polygon
+//    itself, with new factors for their links from a fixed-point
+//    point-to-polygon kernel (visibility kept from the stored link). Closer
+//    to the exact light next to the emitter; the placement costs the kernel.
+enum class SurfaceEmitterMethod : uint8_t { kFractionalEmissivity, kAdaptiveRefine };
+
+// New links one adaptive-refine placement may make (EngineOptions).
+inline constexpr int kDefaultSurfaceEmitterRefineLinks = 65536;
+
 struct SurfaceEmitterShape {
   std::string surface;  // the bake's surface name (BakeMesh::surface_names)
   int corner_count = 0;  // kMinSurfaceEmitterCorners .. kMaxSurfaceEmitterCorners
   // Q16.16 metres, xyz per corner, in order around a convex polygon (either
   // way round: it emits from the surface's lit side).
   int32_t corners_q16[kMaxSurfaceEmitterCorners][3] = {};
+  SurfaceEmitterMethod method = SurfaceEmitterMethod::kAdaptiveRefine;
 };
 
 }  // namespace relight
