@@ -98,9 +98,11 @@ Status SurfaceEmitters::Remove(int slot) {
 int SurfaceEmitters::SolvePending() {
   int solved = 0;
   last_sweeps_ = 0;
-  for (Slot& s : slots_) {
+  for (int slot = 0; slot < kMaxSurfaceEmitters; ++slot) {
+    Slot& s = slots_[slot];
     if (!s.placed || !s.dirty) continue;
     last_sweeps_ += solver_.SolveRgb(s.coverage_q32.data(), exitance_.data());
+    if (observer_ != nullptr) observer_->OnSolved(slot, exitance_.data());
     // Unit luminance L = 1 cd/m^2 emits M = pi L; the vertex luminance is
     // exitance / pi, so the pi cancels: the unit-coverage solve is the answer.
     LeavesToVerticesQ24(*bake_->hierarchy, vertex_area_.data(), vertex_count_, exitance_.data(),

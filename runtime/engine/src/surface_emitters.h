@@ -19,6 +19,14 @@
 
 namespace relight {
 
+// Told of each slot's solve (emitter_grids.h lights the grids from it).
+class EmitterSolveObserver {
+ public:
+  virtual ~EmitterSolveObserver() = default;
+  // exitance_q32: 3 per node for unit emission, valid during the call only.
+  virtual void OnSolved(int slot, const int64_t* exitance_q32) = 0;
+};
+
 class SurfaceEmitters {
  public:
   // A bake without a hierarchy opens fine; every call then returns kUnsupported.
@@ -39,6 +47,13 @@ class SurfaceEmitters {
   void AddTo(int32_t* vertex_q12) const;
 
   int last_sweeps() const { return last_sweeps_; }
+  // Null or an observer that outlives this; called from SolvePending().
+  void set_observer(EmitterSolveObserver* observer) { observer_ = observer; }
+  // The slot's luminance (3 x LightQ12) if it is placed and solved, else null.
+  const int32_t* solved_luminance_q12(int slot) const {
+    const Slot& s = slots_[slot];
+    return s.placed && !s.dirty ? s.luminance_q12 : nullptr;
+  }
 
  private:
   struct Slot {
@@ -59,6 +74,7 @@ class SurfaceEmitters {
   std::vector<int64_t> coverage_scratch_, exitance_;
   Slot slots_[kMaxSurfaceEmitters];
   int last_sweeps_ = 0;
+  EmitterSolveObserver* observer_ = nullptr;
 };
 
 }  // namespace relight
