@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "bake_hierarchy.h"
+#include "grid_links.h"
 #include "bake_lid.h"
 #include "baker_core.h"
 #include "compress_luminaire.h"
@@ -221,6 +222,13 @@ relight::Bake Baker::BakePart(const std::function<bool(size_t)>& mine, bool whol
     if (whole && core.options.store_hierarchy) {
       bake.hierarchy = MakeBakeHierarchy(core.mesh, core.hierarchical_solver->hierarchy(),
                                          core.hierarchical_solver->links());
+      if (!core.gather.empty()) {
+        const Stopwatch grid_time;
+        MakeGridLinks(core.mesh, core.hierarchical_solver->hierarchy(), core.gather,
+                      core.options.grid_link_epsilon, &*bake.hierarchy);
+        impl_->report.grid_links = bake.hierarchy->grid_link_node.size();
+        impl_->report.grid_link_seconds = grid_time.seconds();
+      }
     }
   }
   impl_->report.total_seconds += total.seconds();

@@ -74,6 +74,7 @@ struct Args {
   std::string solver = "auto";
   double patch_size_m = 0;  // 0: the scene's
   double link_epsilon = relight::baker::BakeOptions().link_epsilon;
+  double grid_link_epsilon = relight::baker::BakeOptions().grid_link_epsilon;
   int lid_samples = 720;
   double lid_error_percent = 0;  // > 0: choose each luminaire's SH degree for this target
   bool quiet = false;
@@ -119,7 +120,9 @@ double PeakMegabytes() {
 std::string HierarchySummary(const std::vector<relight::BakeSectionSize>& sections) {
   std::string out;
   for (const relight::BakeSectionSize& s : sections) {
-    if (std::strcmp(s.tag, "HIER") != 0 && std::strcmp(s.tag, "LINK") != 0) continue;
+    if (std::strcmp(s.tag, "HIER") != 0 && std::strcmp(s.tag, "LINK") != 0 &&
+        std::strcmp(s.tag, "GLNK") != 0)
+      continue;
     char text[64];
     std::snprintf(text, sizeof text, ", %s %.2f MB", s.tag,
                   static_cast<double>(s.stored_bytes) / (1024.0 * 1024.0));
@@ -135,7 +138,14 @@ std::string SolverSummary(const relight::baker::BakeReport& r) {
                 "hierarchical solver (%zu nodes, %zu links, %d sweeps, stopped at residual "
                 "%.1e of peak)",
                 r.nodes, r.links, r.sweeps, r.residual);
-  return text;
+  std::string out = text;
+  if (r.grid_links > 0) {
+    std::snprintf(text, sizeof text, ", %zu grid links (%.2f per point, %.2f s)", r.grid_links,
+                  static_cast<double>(r.grid_links) / static_cast<double>(r.grid_points),
+                  r.grid_link_seconds);
+    out += text;
+  }
+  return out;
 }
 
 void PrintSummary(const Scene& scene, const relight::baker::BakeReport& r,
@@ -185,6 +195,7 @@ int Run(const Args& args, const relight::baker::DistributedSession& mpi) {
   if (args.solver == "dense") options.solver = relight::baker::SolverKind::kDense;
   if (args.solver == "hierarchical") options.solver = relight::baker::SolverKind::kHierarchical;
   options.link_epsilon = args.link_epsilon;
+  options.grid_link_epsilon = args.grid_link_epsilon;
   options.store_hierarchy = !args.no_hierarchy;
   options.lid_samples = args.lid_samples;
   options.progress = !args.quiet && mpi.writer();
@@ -313,6 +324,11 @@ int main(int argc, char** argv) {
   app.add_option("--link-epsilon", args.link_epsilon,
                  "hierarchical: split a link while F x source exitance exceeds this fraction "
                  "of the brightest exitance (0 = every patch pair)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  app.add_option("--grid-link-epsilon", args.grid_link_epsilon,
+                 "stored hierarchy: link a node to a grid point when the point sees its area "
+                 "evenly to within this (docs/hierarchy.md \"Grids\"); smaller = more links")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   app.add_option("--threads", args.threads, "worker threads (0 = all cores)")

@@ -4,6 +4,9 @@
 // a false-colour plan of each grid (lux_map_svg.h).
 //
 //   relight-probe room.rlb --set ceiling_spot.tilt=30 -o grid.csv --svg grid.svg
+//   relight-probe room.rlb --emitter "room/+z:3000:2.5,1.5,2.7;3.5,1.5,2.7;3.5,2.5,2.7;2.5,2.5,2.7"
+// (a light panel on a surface: its light and interreflections on the grids,
+// with a bake that stores the hierarchy and its grid links; docs/hierarchy.md).
 #include <algorithm>
 #include <cstdio>
 #include <string>
@@ -13,6 +16,8 @@
 
 #include "lux_map_svg.h"
 #include "relight/engine/engine.h"
+#include "emitter_args.h"
+#include "relight/engine/surface_emitter.h"
 #include "set_args.h"
 
 namespace {
@@ -46,11 +51,15 @@ int main(int argc, char** argv) {
       "Writes one CSV row per point (grid, point, x_m, y_m, z_m, E_total_lux, E_direct_lux) and\n"
       "prints per grid: Emin, Eavg, Emax (lux) and uniformity U0 = Emin / Eavg.\n"
       "--svg draws each grid as a false-colour plan in lux with those figures (opens in a browser).\n"
-      "Settings: --set FIXTURE.PARAM=VALUE as for relight-render."};
+      "Settings: --set FIXTURE.PARAM=VALUE as for relight-render; --emitter SURFACE:L:x,y,z;... puts a\n"
+      "light panel (L cd/m^2, or R,G,B) on a surface, as relight-render's --emitter."};
   std::string bake_path, out_path, svg_path;
-  std::vector<std::string> sets;
+  std::vector<std::string> sets, emitters;
   app.add_option("bake", bake_path, "bake file written by relight-bake (.rlb)")->required();
   app.add_option("--set", sets, "fixture setting FIXTURE.PARAM=VALUE (repeatable)");
+  app.add_option("--emitter", emitters,
+                 "run-time light source SURFACE:L:x,y,z;x,y,z;x,y,z[;...] (L in cd/m^2 or R,G,B; "
+                 "repeatable)");
   app.add_option("-o,--output", out_path, "CSV file to write (default: summary only)");
   app.add_option("--svg", svg_path, "false-colour lux plan of every grid to write (SVG)");
   CLI11_PARSE(app, argc, argv);
@@ -67,9 +76,27 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  if (emitters.size() > static_cast<size_t>(relight::kMaxSurfaceEmitters)) {
+    std::fprintf(stderr, "relight-probe: error: at most %d --emitter\n", relight::kMaxSurfaceEmitters);
+    return 2;
+  }
+  for (size_t i = 0; i < emitters.size(); ++i) {
+    std::string error;
+    if (!relight::cli::ApplyEmitterText(engine, static_cast<int>(i), emitters[i], &error)) {
+      std::fprintf(stderr, "relight-probe: error: %s\n", error.c_str());
+      return 2;
+    }
+  }
   engine.Update();
 
   const relight::Bake& bake = engine.bake();
+  if (!emitters.empty() && !bake.grids.empty() &&
+      !(bake.hierarchy && bake.hierarchy->has_grid_links())) {
+    std::fprintf(stderr,
+                 "relight-probe: error: the bake has no links from its hierarchy to the grids, so "
+                 "emitters cannot light them (re-bake with relight-bake, format version 6)\n");
+    return 2;
+  }
   if (bake.grids.empty()) {
     std::fprintf(stderr, "relight-probe: the bake has no calculation grids (add [[grid]] to the scene)\n");
     return 1;
@@ -109,6 +136,7 @@ int main(int argc, char** argv) {
   if (!svg_path.empty()) {
     std::string settings;
     for (const std::string& text : sets) settings += (settings.empty() ? "" : ", ") + text;
+    for (const std::string& text : emitters) settings += (settings.empty() ? "emitter " : ", emitter ") + text;
     const std::string subtitle = "relight-probe " + bake_path + " (scene '" + bake.scene_name + "'), " +
                                  (settings.empty() ? std::string("scene defaults") : settings);
     if (!WriteFileAtomically(svg_path, relight::cli::LuxMapSvg(plans, subtitle))) {

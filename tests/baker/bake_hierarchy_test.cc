@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "bake_hierarchy.h"
+#include "grid_links.h"
 #include "bake_test_bake.h"
 #include "baker_core.h"
 #include "radiosity_vec.h"
@@ -282,7 +283,10 @@ TEST(StoredHierarchy, RoundTripKeepsTheSolversNodesAndLinks) {
   const Scene scene = CornellWithLeanTo();
   const auto core = BuildBakerCore(scene, Hierarchical(), nullptr);
   const HierarchicalSolver& solver = *core->hierarchical_solver;
-  const BakeHierarchy made = MakeBakeHierarchy(core->mesh, solver.hierarchy(), solver.links());
+  BakeHierarchy made = MakeBakeHierarchy(core->mesh, solver.hierarchy(), solver.links());
+  // The grid links (GLNK) from the same gather, as Baker::Bake makes them.
+  MakeGridLinks(core->mesh, solver.hierarchy(), core->gather, Hierarchical().grid_link_epsilon, &made);
+  ASSERT_TRUE(made.has_grid_links());
   Baker baker(scene, Hierarchical());
   relight::Bake bake = baker.Bake();
   bake_test::ExpectHierarchiesEqual(bake.hierarchy, made);  // the baker is deterministic

@@ -248,6 +248,9 @@ inline void ExpectHierarchiesEqual(const std::optional<BakeHierarchy>& a,
   EXPECT_EQ(a->link_f_qp, b->link_f_qp);
   EXPECT_EQ(a->link_g_pq, b->link_g_pq);
   EXPECT_EQ(a->link_g_qp, b->link_g_qp);
+  EXPECT_EQ(a->grid_link_offsets, b->grid_link_offsets);
+  EXPECT_EQ(a->grid_link_node, b->grid_link_node);
+  EXPECT_EQ(a->grid_link_f, b->grid_link_f);
 }
 
 inline void ExpectBakesEqual(const Bake& a, const Bake& b) {

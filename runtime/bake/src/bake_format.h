@@ -1,4 +1,4 @@
-// On-disk layout of a bake file, format version 5: the constants the writer
+// On-disk layout of a bake file, format version 6: the constants the writer
 // and the reader share. docs/bake-format.md is the specification; keep the
 // two in step. Private to the runtime.
 #pragma once
@@ -15,7 +15,7 @@ namespace relight::bake_format {
 
 // --- File header (28 bytes) and table of contents (36 bytes per section).
 inline constexpr uint8_t kMagic[8] = {'R', 'E', 'L', 'I', 'G', 'H', 'T', '\0'};
-inline constexpr uint32_t kVersion = 5;
+inline constexpr uint32_t kVersion = 6;
 // Version 1 files still read: their LUMI sections end after the LID samples
 // (no orientation, ranges or (C, gamma) table; defaults apply).
 inline constexpr uint32_t kOldestVersion = 1;
@@ -29,6 +29,9 @@ inline constexpr uint32_t kFirstVersionWithZoom = 4;
 // Version 5: a CPCA section (compressed basis) may stand where a BASE does.
 // Written only when some basis is compressed.
 inline constexpr uint32_t kFirstVersionWithCompressed = 5;
+// Version 6: a GLNK section (links from the nodes to the grid points) may
+// follow LINK. Written only when the hierarchy has them.
+inline constexpr uint32_t kFirstVersionWithGridLinks = 6;
 inline constexpr size_t kVersionOffset = 8;
 inline constexpr size_t kSectionCountOffset = 12;
 inline constexpr size_t kFileSizeOffset = 16;
@@ -56,6 +59,7 @@ inline constexpr uint32_t kTagBasis = Fourcc('B', 'A', 'S', 'E');
 inline constexpr uint32_t kTagHierarchy = Fourcc('H', 'I', 'E', 'R');
 inline constexpr uint32_t kTagLinks = Fourcc('L', 'I', 'N', 'K');
 inline constexpr uint32_t kTagCompressed = Fourcc('C', 'P', 'C', 'A');
+inline constexpr uint32_t kTagGridLinks = Fourcc('G', 'L', 'N', 'K');
 
 struct TocEntry {
   uint32_t tag = 0, flags = 0;
@@ -88,7 +92,7 @@ inline TocEntry LoadTocEntry(const uint8_t* p) {
 // that is a safe bound on what an honest frame can expand to.
 inline constexpr uint64_t kMaxZstdExpansion = 65536;
 inline constexpr uint32_t kMaxSections =
-    2 + kMaxGrids + kMaxLuminaires * (1 + 2 * (1 + kMaxGrids)) + 2;
+    2 + kMaxGrids + kMaxLuminaires * (1 + 2 * (1 + kMaxGrids)) + 3;
 
 // --- Payload sizes in bytes (docs/bake-format.md, one table per section).
 inline constexpr uint64_t kStringBytes = 4;  // u32 length; the bytes follow
@@ -158,5 +162,9 @@ inline constexpr uint64_t kHierBytesPerNode = 2 + 4 + 4 + 1 + 1 + 4 * kBakeMaxNo
 inline constexpr uint64_t kLinkBytesPerLink = 4 * 4 + 4 * 4;
 constexpr uint64_t HierBytes(uint64_t nodes) { return kCountBytes + kHierBytesPerNode * nodes; }
 constexpr uint64_t LinkBytes(uint64_t links) { return kCountBytes + kLinkBytesPerLink * links; }
+// GLNK: point count P, link count K, then offsets u32[P + 1], node u32[K], f u32[K].
+constexpr uint64_t GridLinkBytes(uint64_t points, uint64_t links) {
+  return 2 * kCountBytes + 4 * (points + 1) + 8 * links;
+}
 
 }  // namespace relight::bake_format

@@ -44,6 +44,11 @@ class Parser {
     RELIGHT_RETURN_IF_ERROR(CheckSectionCount(bake));
     RELIGHT_RETURN_IF_ERROR(ParseReceivers(&bake));
     if (hierarchy_index_ != 0) RELIGHT_RETURN_IF_ERROR(DecodeHierarchy(&in_, hierarchy_index_, &bake));
+    if (grid_links_) {
+      uint32_t points = 0;  // each <= 2^24, at most 64 grids: no wrap
+      for (const BakeGrid& grid : bake.grids) points += grid.point_count();
+      RELIGHT_RETURN_IF_ERROR(DecodeGridLinks(&in_, hierarchy_index_ + 2, points, &bake));
+    }
     *out = std::move(bake);
     return Status::Ok();
   }
@@ -64,8 +69,18 @@ class Parser {
                   (lum.direct_mode == DirectMode::kExactDirect ? 2 : 1);
     }
     const bool hierarchy_allowed = in_.version() >= kFirstVersionWithHierarchy;
-    if (hierarchy_allowed && in_.section_count() == expected + 2) {
+    // Version 6 on, a GLNK section may follow LINK.
+    grid_links_ = in_.version() >= kFirstVersionWithGridLinks &&
+                  in_.section_count() == expected + 3;
+    if (hierarchy_allowed && (in_.section_count() == expected + 2 || grid_links_)) {
       hierarchy_index_ = expected;
+      if (grid_links_) {
+        uint64_t points = 0;
+        for (uint32_t p : counts_.grid_points) points += p;
+        RELIGHT_RETURN_IF_ERROR(in_.Expect(expected + 2, kTagGridLinks, "section GLNK",
+                                           GridLinkBytes(points, 0),
+                                           GridLinkBytes(points, kMaxLinks)));
+      }
       // Fewer than 2 T nodes (bake_format.h); the node count itself is checked after loading.
       const uint64_t max_nodes = counts_.triangles == 0 ? 0 : 2 * uint64_t{counts_.triangles} - 1;
       RELIGHT_RETURN_IF_ERROR(in_.Expect(expected, kTagHierarchy, "section HIER", HierBytes(1),
@@ -75,7 +90,10 @@ class Parser {
     if (in_.section_count() != expected) {
       std::string also;
       if (hierarchy_allowed) {
-        also = StrFormat(" (or %zu with HIER and LINK)", expected + 2);
+        also = in_.version() >= kFirstVersionWithGridLinks
+                   ? StrFormat(" (or %zu with HIER and LINK, %zu with GLNK too)", expected + 2,
+                               expected + 3)
+                   : StrFormat(" (or %zu with HIER and LINK)", expected + 2);
       } else if (in_.section_count() == expected + 2) {
         also = StrFormat(" (HIER and LINK need format version %u, the file has %u)",
                          kFirstVersionWithHierarchy, in_.version());
@@ -136,6 +154,7 @@ class Parser {
 
   ContainerReader in_;
   size_t hierarchy_index_ = 0;  // TOC index of HIER (LINK follows); 0: none
+  bool grid_links_ = false;     // GLNK follows LINK
   Counts counts_;
 };
 

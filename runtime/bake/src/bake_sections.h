@@ -57,5 +57,8 @@ void EncodeHierarchyNodes(const BakeHierarchy& h, std::vector<uint8_t>* out);
 void EncodeHierarchyLinks(const BakeHierarchy& h, std::vector<uint8_t>* out);
 // HIER at `index`, LINK after it; sets bake->hierarchy.
 Status DecodeHierarchy(ContainerReader* in, size_t index, Bake* bake);
+// GLNK (bake_section_grid_links.cc), after LINK: sets the hierarchy's grid links.
+void EncodeGridLinks(const BakeHierarchy& h, std::vector<uint8_t>* out);
+Status DecodeGridLinks(ContainerReader* in, size_t index, uint32_t grid_points, Bake* bake);
 
 }  // namespace relight::bake_format

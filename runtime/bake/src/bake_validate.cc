@@ -77,6 +77,10 @@ Status ValidateBake(const Bake& bake) {
     if (!e.empty()) return Invalid("hierarchy nodes", e);
     e = CheckHierarchyLinks(*bake.hierarchy);
     if (!e.empty()) return Invalid("hierarchy links", e);
+    uint64_t points = 0;
+    for (const BakeGrid& grid : bake.grids) points += grid.point_count();
+    e = CheckGridLinks(*bake.hierarchy, points);
+    if (!e.empty()) return Invalid("hierarchy grid links", e);
   }
   return Status::Ok();
 }

@@ -22,11 +22,13 @@ uint32_t SectionCount(const Bake& bake) {
     const uint32_t per_set = lum.direct_mode == DirectMode::kExactDirect ? 2 : 1;
     n += per_set * bake.receiver_set_count();
   }
-  return n + (bake.hierarchy ? 2 : 0);
+  if (!bake.hierarchy) return n;
+  return n + (bake.hierarchy->has_grid_links() ? 3 : 2);
 }
 
 // The lowest version that holds the bake, so older readers read what they can.
 uint32_t FileVersion(const Bake& bake) {
+  if (bake.hierarchy && bake.hierarchy->has_grid_links()) return kFirstVersionWithGridLinks;
   for (const BakeLuminaire& lum : bake.luminaires) {
     for (const BakeLightReceivers& rec : lum.receivers) {
       if (rec.compressed.present()) return kFirstVersionWithCompressed;
@@ -75,6 +77,9 @@ bool WriteSections(const Bake& bake, int fd, std::vector<BakeSectionSize>* sizes
     const BakeHierarchy& h = *bake.hierarchy;
     ok = ok && add(kTagHierarchy, [&](std::vector<uint8_t>* o) { EncodeHierarchyNodes(h, o); }) &&
          add(kTagLinks, [&](std::vector<uint8_t>* o) { EncodeHierarchyLinks(h, o); });
+    if (h.has_grid_links()) {
+      ok = ok && add(kTagGridLinks, [&](std::vector<uint8_t>* o) { EncodeGridLinks(h, o); });
+    }
   }
   if (!ok) return false;
   RELIGHT_CHECK(sink.toc().size() == sections);

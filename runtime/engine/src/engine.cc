@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "console_aim.h"
+#include "emitter_grids.h"
 #include "engine_threads.h"
 #include "fixture_frame.h"
 #include "luminaire.h"
@@ -42,6 +43,7 @@ struct Engine::Impl {
   std::vector<MixSource> mix;  // per luminaire
   EngineOutputs out;
   SurfaceEmitters emitters;  // run-time light sources on surfaces
+  EmitterGrids emitter_grids;  // ... and their light on the calculation grids
   bool remix = true;
   int last_luminaires = 0;
   int last_terms = 0;
@@ -52,6 +54,8 @@ struct Engine::Impl {
     RELIGHT_RETURN_IF_ERROR(SetUpLuminaires(bake, &lums, &work));
     SizeOutputs(bake, &out, &mix);
     RELIGHT_RETURN_IF_ERROR(emitters.Open(bake, options.emitter_refine_links));
+    emitter_grids.Open(bake);
+    emitters.set_observer(&emitter_grids);
     StartEngineThreads(options.threads, work, lums.size(), &threads);
     return Status::Ok();
   }
@@ -95,6 +99,7 @@ void Engine::Impl::Update() {
   if (remix) {
     RemixOnThreads(bake, lums, &work, mix.data(), &threads, &out);
     emitters.AddTo(out.vertex.data());
+    emitter_grids.AddTo(emitters, &out.grid_total);
   }
   remix = false;
 }

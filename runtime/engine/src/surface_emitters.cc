@@ -90,6 +90,7 @@ Status SurfaceEmitters::Place(int slot, const SurfaceEmitterShape& shape) {
   if (same(s.now)) return Status::Ok();  // where it is (or was)
   if (s.before.solved && same(s.before)) {
     std::swap(s.now, s.before);  // back where it came from: the stored bits
+    s.restored = true;
     return Status::Ok();
   }
   if (s.now.solved) std::swap(s.now, s.before);  // keep the last solved one to start from
@@ -154,7 +155,12 @@ int SurfaceEmitters::SolvePending(WorkerPool* pool) {
   int solved = 0;
   last_sweeps_ = 0;
   last_warm_ = 0;
-  for (Slot& s : slots_) {
+  for (int slot = 0; slot < kMaxSurfaceEmitters; ++slot) {
+    Slot& s = slots_[slot];
+    if (s.placed && s.now.solved && s.restored && observer_ != nullptr) {
+      observer_->OnSolved(slot, s.now.exitance_q32.data());
+    }
+    s.restored = false;
     if (!s.placed || s.now.solved) continue;
     bool warm = false;
     StartFrom(s, s.now.exitance_q32.data(), &warm);
@@ -172,6 +178,7 @@ int SurfaceEmitters::SolvePending(WorkerPool* pool) {
     } else {
       last_sweeps_ += solver_.SolveRgb(s.now.coverage_q32.data(), nullptr, s.now.exitance_q32.data(), pool);
     }
+    if (observer_ != nullptr) observer_->OnSolved(slot, s.now.exitance_q32.data());
     // Unit luminance L = 1 cd/m^2 emits M = pi L; the vertex luminance is
     // exitance / pi, so the pi cancels: the unit-coverage solve is the answer.
     LeavesToVerticesQ24(vertex_weights_, vertex_count_, solver_.exitance_q24(), s.now.unit_q24.data());

@@ -29,6 +29,14 @@
 
 namespace relight {
 
+// Told of each slot's solve (emitter_grids.h lights the grids from it).
+class EmitterSolveObserver {
+ public:
+  virtual ~EmitterSolveObserver() = default;
+  // exitance_q32: 3 per node for unit emission, valid during the call only.
+  virtual void OnSolved(int slot, const int64_t* exitance_q32) = 0;
+};
+
 class SurfaceEmitters {
  public:
   // A bake without a hierarchy opens fine; every call then returns
@@ -55,6 +63,14 @@ class SurfaceEmitters {
   // Solves of the last SolvePending that started from the previous solution.
   int last_warm_starts() const { return last_warm_; }
   int last_refine_links() const { return refine_.last_links(); }
+  // Null or an observer that outlives this; called from SolvePending() for
+  // every slot whose solution changed (solved, or restored by a move back).
+  void set_observer(EmitterSolveObserver* observer) { observer_ = observer; }
+  // The slot's luminance (3 x LightQ12) if it is placed and solved, else null.
+  const int32_t* solved_luminance_q12(int slot) const {
+    const Slot& s = slots_[slot];
+    return s.placed && s.now.solved ? s.luminance_q12 : nullptr;
+  }
 
  private:
   struct Solution {
@@ -70,6 +86,7 @@ class SurfaceEmitters {
   struct Slot {
     bool placed = false;
     bool moved = false;  // the last Place found it placed: a move, not a new light
+    bool restored = false;  // `now` came back without a solve: the observer is yet to see it
     int32_t luminance_q12[3] = {0, 0, 0};
     Solution now, before;  // before: the last solved placement the slot moved from
   };
@@ -88,6 +105,7 @@ class SurfaceEmitters {
   std::vector<int64_t> coverage_scratch_, first_shot_scratch_, extra_, no_emission_;
   Slot slots_[kMaxSurfaceEmitters];
   int last_sweeps_ = 0, last_warm_ = 0;
+  EmitterSolveObserver* observer_ = nullptr;
 };
 
 }  // namespace relight

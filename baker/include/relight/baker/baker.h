@@ -58,6 +58,11 @@ struct BakeOptions {
   // Hierarchical: store the quadtrees and links in the bake (sections HIER
   // and LINK) for light sources placed on surfaces at run time.
   bool store_hierarchy = true;
+  // With the hierarchy stored and the scene's grids: links from nodes to
+  // grid points (section GLNK), a node linked when the point sees its area
+  // evenly to within this (sum over its leaves of |factor - even share|;
+  // grid_links.h). Smaller: more, finer links.
+  double grid_link_epsilon = 1e-4;
   // Clustered-PCA compression of the bases (compress_basis.h): the largest
   // error allowed, a fraction of the peak of each luminaire's own SH light
   // at random looks; 0 stores the bases uncompressed.
@@ -80,6 +85,8 @@ struct BakeReport {
   double form_factor_seconds = 0, solve_seconds = 0, total_seconds = 0;
   SolverKind solver = SolverKind::kDense;  // the one used (never kAuto)
   size_t nodes = 0, links = 0;             // hierarchical: quadtree nodes and links
+  size_t grid_links = 0;                   // stored hierarchy: node-to-grid-point links
+  double grid_link_seconds = 0;            // ... and the time they took
   int sweeps = 0;                          // hierarchical: most Gauss-Seidel sweeps of a solve
   double residual = 0;  // hierarchical: largest residual a solve stopped at, of its peak exitance
   // Zooming beams without a scene sh_degree: the degree their narrowest angle got.

@@ -226,8 +226,19 @@ struct BakeHierarchy {
   std::vector<uint32_t> link_f_pq, link_f_qp;
   std::vector<int32_t> link_g_pq, link_g_qp;  // 2 per link: u, v
 
+  // Links from the nodes to the calculation grids' points (format version 6,
+  // section GLNK), so run-time emitters light the grids. Points are numbered
+  // across the grids in grid order. Point i gathers from grid_link_node[e]
+  // with factor grid_link_f[e] for e in [grid_link_offsets[i],
+  // grid_link_offsets[i + 1]): the irradiance at the point (lux) per unit
+  // exitance of the node (lm/m^2), with visibility, UQ0.32; nodes ascending
+  // within a point. Empty (no offsets): the bake has none (older bakes).
+  std::vector<uint32_t> grid_link_offsets;  // total grid points + 1, or empty
+  std::vector<uint32_t> grid_link_node, grid_link_f;
+
   uint32_t node_count() const { return static_cast<uint32_t>(node_surface.size()); }
   uint32_t link_count() const { return static_cast<uint32_t>(link_p.size()); }
+  bool has_grid_links() const { return !grid_link_offsets.empty(); }
   bool leaf(uint32_t node) const { return node_child_count[node] == 0; }
 };
 
@@ -259,7 +270,8 @@ struct BakeSectionSize {
 // error the previous file at `path` (if any) is untouched. The file has
 // format version 4 when a luminaire has a zoom, else 3 when it holds a
 // hierarchy, else 2 (the lowest that holds it, so older readers read it);
-// 5 when a basis is compressed (section CPCA).
+// 5 when a basis is compressed (section CPCA); 6 when the hierarchy has
+// grid links (section GLNK).
 // `sizes`, if given, receives every section's raw and stored size, in file order.
 // Returns kOk, kInvalidArgument (inconsistent sizes, named), kIoError.
 Status WriteBake(const Bake& bake, const std::string& path,

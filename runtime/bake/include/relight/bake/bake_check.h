@@ -49,6 +49,9 @@ std::string CheckHierarchyNodes(const BakeHierarchy& h, const BakeMesh& mesh);
 // Its links against nodes that passed CheckHierarchyNodes: lengths, node
 // indices, order, surfaces, factors and gradients.
 std::string CheckHierarchyLinks(const BakeHierarchy& h);
+// Its grid links (bake_check_grid_links.cc), none or one range per grid
+// point: offsets, node indices ascending per point, factor sums at most 2.
+std::string CheckGridLinks(const BakeHierarchy& h, uint64_t grid_points);
 // A compressed basis (bake_check_compressed.cc): counts, cluster starts,
 // scales, zero-scale rows and weight range, for `receivers` points.
 std::string CheckCompressedBasis(const BakeCompressedBasis& cpca, int sh_degree, uint32_t receivers);

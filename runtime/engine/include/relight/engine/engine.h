@@ -122,8 +122,13 @@ class Engine {
   // SetSurfaceEmitter places or moves one and sets its luminance (LightQ12
   // cd/m^2 per channel): it clips the polygon against its surface's quadtree
   // now and re-solves radiosity over the bake's links at the next Update()
-  // (the only costly step). Its light is added to vertex_luminance(), not to
-  // the grids (the bake has no links to grid points). Returns kUnsupported
+  // (the only costly step). Its light is added to vertex_luminance() and, when
+  // the bake has links from its nodes to the grid points (format version 6,
+  // GLNK), to grid_illuminance(): both the light straight from the emitter
+  // and its interreflections, for they arrive through the same node
+  // exitance; grid_direct_illuminance() stays the luminaires' exact direct
+  // term. Older hierarchy bakes light the grids from luminaires only.
+  // Returns kUnsupported
   // (bake without a hierarchy), kNotFound (no such surface), kInvalidArgument
   // (slot, negative luminance, a corner off the surface's plane, a polygon
   // not convex or not on the surface), kOutOfRange (adaptive refine needs
@@ -144,7 +149,8 @@ class Engine {
   LuminanceView vertex_luminance() const;
   uint32_t vertex_count() const;
   // Per point RGB illuminance on calculation grid `grid`, LightQ12 lux:
-  // total and direct only; an empty view for a bad index or when closed.
+  // total (luminaires and run-time emitters) and the luminaires' direct
+  // only; an empty view for a bad index or when closed.
   IlluminanceView grid_illuminance(int grid) const;
   IlluminanceView grid_direct_illuminance(int grid) const;
 
