@@ -130,6 +130,40 @@ TEST(DaemonEmitter, AReplaySwitchesAndMovesAPanel) {
   EXPECT_EQ(at_tick[8], off) << "switched off: not the light before, bit for bit";
 }
 
+// DMX: the panel patched as a DMX fixture (fixtures/dmx/relight-light-panel.toml:
+// dimmer, dimmer fine, x, y, size, r, g, b) under the emitter's name, played
+// from a recording through the same decoder as live DMX.
+TEST(DaemonEmitter, ADmxRecordingSwitchesAndMovesAPanel) {
+  if (!FileExists(RELIGHT_TEST_HIER_BAKE)) GTEST_SKIP() << "no bake (ctest's MakeLivingRoomHierBake makes it)";
+  DaemonConfig c = Config(kPatch);
+  c.dmx_patch_path = WriteTemp("emitter_dmx.toml", "[[dmx_fixture]]\nname = \"panel\"\ntype = \"" RELIGHT_SOURCE_DIR
+                                                   "/fixtures/dmx/relight-light-panel.toml\"\nmode = \"8 channel\"\n"
+                                                   "universe = 1\naddress = 1\n");
+  c.dmx_replay_path = WriteTemp("emitter.dmxrec",
+                                "0       1 1=0000808000ffffff\n"  // off; x, y middle, size 0
+                                "1000000 1 1=ffff\n"              // on at 1 s
+                                "2000000 1 3=1acc\n"              // x 0.1, y 0.8 at 2 s
+                                "3000000 1 1=0000\n");            // off at 3 s
+  c.script_time = true;
+  c.exit_when_replay_done = true;
+  Daemon d;
+  const Status opened = d.Open(c);
+  ASSERT_TRUE(opened.ok()) << opened.ToString();
+  std::map<int64_t, Luminance> at_tick;
+  d.SetFrameObserver([&](const FrameInfo& f) { at_tick[f.tick] = Snapshot(d.engine()); });
+  std::atomic<bool> stop{false}, reload{false};
+  ASSERT_TRUE(d.Start().ok());
+  const Status ran = d.Run(stop, reload);
+  ASSERT_TRUE(ran.ok()) << ran.ToString();
+  ASSERT_GE(at_tick.size(), 7u);
+  const Luminance& off = at_tick[0];
+  EXPECT_NE(at_tick[2], off) << "switched on at 1 s: no change";
+  ExpectInside(Brightest(d.engine(), off, at_tick[2]), 0.5, 0.5, 0.0);
+  EXPECT_NE(at_tick[4], at_tick[2]) << "moved at 2 s: no change";
+  ExpectInside(Brightest(d.engine(), off, at_tick[4]), 0x1a / 255.0, 0xcc / 255.0, 0.0);
+  EXPECT_EQ(at_tick[6], off) << "switched off: not the light before, bit for bit";
+}
+
 hal::ModbusTcpServer* TcpServerOf(const Daemon& d) {
   for (hal::InputSource* s : d.sources()) {
     if (auto* tcp = dynamic_cast<hal::ModbusTcpServer*>(s)) return tcp;

@@ -10,6 +10,7 @@
 #include "relight/control/engine_binding.h"
 #include "relight/hal/dmx/dmx_replay_source.h"
 #include "relight/hal/dmx/ola_source.h"
+#include "relight/hal/param_text.h"
 #include "relight/hal/replay_source.h"
 #include "relight/hal/source_factory.h"
 
@@ -103,12 +104,18 @@ struct Daemon::Impl {
     if (dmx_patch.fixtures.size() > static_cast<size_t>(kMaxFixtures)) {
       return Status(StatusCode::kInvalidArgument, config.dmx_patch_path + ": more than 65535 fixtures");
     }
+    // A DMX fixture drives a luminaire or one of the patch's emitters (its slot after the luminaires).
+    const std::vector<std::string> slots = path.SlotNames();
     std::vector<uint16_t> luminaires;
     for (const hal::DmxFixturePatch& f : dmx_patch.fixtures) {
-      std::vector<uint16_t> one;
-      RELIGHT_RETURN_IF_ERROR(control::BindNames(
-          engine, {f.name}, config.dmx_patch_path + ":" + std::to_string(f.line) + ": dmx_fixture", &one));
-      luminaires.push_back(one[0]);
+      const int slot = hal::FixtureIndex(slots, f.name);
+      if (slot < 0) {
+        return Status(StatusCode::kNotFound, config.dmx_patch_path + ":" + std::to_string(f.line) +
+                                                 ": dmx_fixture: no luminaire '" + f.name +
+                                                 "' in the bake (it has: " + hal::FixtureList(slots) +
+                                                 "; emitters come from the --patch)");
+      }
+      luminaires.push_back(static_cast<uint16_t>(slot));
     }
     dmx_luminaires = std::move(luminaires);
     dmx_is_replay = !config.dmx_replay_path.empty();
