@@ -113,7 +113,7 @@ struct Daemon::Impl {
         return Status(StatusCode::kNotFound, config.dmx_patch_path + ":" + std::to_string(f.line) +
                                                  ": dmx_fixture: no luminaire '" + f.name +
                                                  "' in the bake (it has: " + hal::FixtureList(slots) +
-                                                 "; emitters come from the --patch)");
+                                                 ") nor among the --patch's emitters");
       }
       luminaires.push_back(static_cast<uint16_t>(slot));
     }

@@ -172,11 +172,7 @@ Status EmitterBinding::Bind(Engine* engine, const std::vector<hal::EmitterPatch>
 }
 
 bool EmitterBinding::Set(int index, Param param, int32_t level_q15) {
-  if (index < 0 || index >= count() || !(param == Param::kDimmer || param == Param::kRed || param == Param::kGreen ||
-                                         param == Param::kBlue || param == Param::kX || param == Param::kY ||
-                                         param == Param::kSize)) {
-    return false;
-  }
+  if (index < 0 || index >= count() || !IsEmitterParam(param)) return false;
   Bound& b = bound_[static_cast<size_t>(index)];
   const int32_t level = level_q15 < 0 ? 0 : level_q15 > 32767 ? 32767 : level_q15;
   int32_t& slot = b.level[static_cast<int>(param)];
@@ -199,7 +195,10 @@ int EmitterBinding::Flush(Status* error) {
     const bool on = b.level[static_cast<int>(Param::kDimmer)] > 0;
     Status st;
     if (!on) {
-      if (b.placed) st = engine_->RemoveSurfaceEmitter(slot), ++engine_calls_;
+      if (b.placed) {
+        st = engine_->RemoveSurfaceEmitter(slot);
+        ++engine_calls_;
+      }
       b.placed = false;
     } else {
       LightQ12 lum[3];

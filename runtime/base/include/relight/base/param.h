@@ -27,6 +27,11 @@ inline constexpr bool IsAngle(Param param) {
   return param == Param::kPan || param == Param::kTilt || param == Param::kRoll ||
          param == Param::kZoom;
 }
+// The parameters a run-time emitter has: dimmer, colour, x, y, size.
+inline constexpr bool IsEmitterParam(Param p) {
+  return p == Param::kDimmer || p == Param::kRed || p == Param::kGreen || p == Param::kBlue || p == Param::kX ||
+         p == Param::kY || p == Param::kSize;
+}
 
 inline constexpr size_t kMaxFixtureName = 47;
 inline constexpr int kMaxFixtures = 65535;  // a fixture index fits uint16_t

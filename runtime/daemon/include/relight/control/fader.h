@@ -20,12 +20,6 @@
 
 namespace relight::control {
 
-// The parameters a run-time emitter has: dimmer, colour, x, y, size.
-inline constexpr bool IsEmitterParam(Param p) {
-  return p == Param::kDimmer || p == Param::kRed || p == Param::kGreen || p == Param::kBlue || p == Param::kX ||
-         p == Param::kY || p == Param::kSize;
-}
-
 // Q1.15 control level -> Q1.15 output level.
 int32_t ApplyDimmerCurve(hal::DimmerCurve curve, int32_t level_q15);
 
