@@ -4,6 +4,7 @@
 //
 //   relight-accuracy fixtures/cornell_box.toml --direct both
 #include <chrono>
+#include <memory>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -60,8 +61,20 @@ std::vector<Case> StandardCases(const std::vector<FixtureSetting>& defaults) {
   return cases;
 }
 
+// The bake's solver and the reference's ("same": the bake's; "dense": the
+// dense matrix, to measure a hierarchical bake against it).
+struct Solvers {
+  std::string bake = "auto", reference = "same";
+};
+
+relight::baker::SolverKind SolverOf(const std::string& name, relight::baker::SolverKind fallback) {
+  if (name == "dense") return relight::baker::SolverKind::kDense;
+  if (name == "hierarchical") return relight::baker::SolverKind::kHierarchical;
+  return fallback;
+}
+
 int Run(const std::string& scene_path, relight::baker::DirectModeKind mode, const std::string& tmp_dir,
-        double lid_error, double compress_error) {
+        double lid_error, double compress_error, const Solvers& solvers) {
   using Clock = std::chrono::steady_clock;
   relight::baker::Scene scene = relight::baker::LoadScene(scene_path);
   std::vector<relight::baker::LuminaireDegree> degrees;
@@ -69,8 +82,16 @@ int Run(const std::string& scene_path, relight::baker::DirectModeKind mode, cons
   relight::baker::BakeOptions options;
   options.direct_mode = mode;
   options.compress_error = compress_error;
+  options.solver = SolverOf(solvers.bake, options.solver);
   const auto t0 = Clock::now();
   relight::baker::Baker baker(scene, options);
+  // A reference of another solver: its own baker on the same scene and mesh options.
+  std::unique_ptr<relight::baker::Baker> other_reference;
+  if (solvers.reference != "same") {
+    relight::baker::BakeOptions ref_options = options;
+    ref_options.solver = SolverOf(solvers.reference, options.solver);
+    other_reference = std::make_unique<relight::baker::Baker>(scene, ref_options);
+  }
   const relight::Bake bake = baker.Bake();
   const double bake_s = std::chrono::duration<double>(Clock::now() - t0).count();
   const std::string path = tmp_dir + "/relight-accuracy.rlb";
@@ -87,9 +108,11 @@ int Run(const std::string& scene_path, relight::baker::DirectModeKind mode, cons
   const char* mode_name = mode == relight::baker::DirectModeKind::kExact ? "exact direct + SH indirect"
                                                                            : "all in SH (Dobashi)";
   std::printf("\n### %s — %s\n\n", scene.name.c_str(), mode_name);
-  std::printf("%zu patches, %zu vertices, %zu grid points, %zu SH terms; bake %.1f s\n\n",
+  std::printf("%zu patches, %zu vertices, %zu grid points, %zu SH terms; bake %.1f s (%s solver)%s\n\n",
               baker.report().patches, baker.report().vertices, baker.report().grid_points,
-              baker.report().sh_terms, bake_s);
+              baker.report().sh_terms, bake_s,
+              baker.report().solver == relight::baker::SolverKind::kHierarchical ? "hierarchical" : "dense",
+              other_reference ? "; reference: the dense solve" : "");
   if (compress_error > 0) {
     const relight::baker::BakeReport& r = baker.report();
     std::printf("bases compressed (--compress-error %.3g%%): %.1fx vs float32, %zu of %zu; baker's estimate "
@@ -118,7 +141,8 @@ int Run(const std::string& scene_path, relight::baker::DirectModeKind mode, cons
   std::vector<Case> cases = StandardCases(baker.DefaultSettings());
   AddZoomCases(scene, baker.DefaultSettings(), &cases);
   for (const Case& c : cases) {
-    const relight::baker::ReferenceResult ref = baker.Reference(c.settings);
+    const relight::baker::ReferenceResult ref =
+        other_reference ? other_reference->Reference(c.settings) : baker.Reference(c.settings);
     const relight::baker::AccuracyReport r = relight::baker::CompareWithReference(&engine, ref, c.settings);
     std::printf("| %s | %.3f | %.3f%% | %.4f%% | %.2f | %.3f%% | %.4f%% |\n", c.label.c_str(), r.vertices.peak,
                 100 * r.vertices.max_rel, 100 * r.vertices.mean_rel, r.grids.peak, 100 * r.grids.max_rel,
@@ -147,15 +171,24 @@ int main(int argc, char** argv) {
                  "compress the bases as relight-bake --compress-error does, percent (0: uncompressed)")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
+  Solvers solvers;
+  app.add_option("--solver", solvers.bake, "the bake's radiosity solver, as relight-bake's")
+      ->check(CLI::IsMember({"auto", "dense", "hierarchical"}))
+      ->capture_default_str();
+  app.add_option("--reference-solver", solvers.reference,
+                 "solver of the reference: the bake's (same) or the dense matrix (dense: a hierarchical bake "
+                 "against the exact solve of the same mesh)")
+      ->check(CLI::IsMember({"same", "dense"}))
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   try {
     if (direct != "sh") {
       if (int rc = Run(scene_path, relight::baker::DirectModeKind::kExact, tmp_dir, lid_error_percent / 100,
-                       compress_error_percent / 100); rc != 0) return rc;
+                       compress_error_percent / 100, solvers); rc != 0) return rc;
     }
     if (direct != "exact") {
       if (int rc = Run(scene_path, relight::baker::DirectModeKind::kAllInSh, tmp_dir, lid_error_percent / 100,
-                       compress_error_percent / 100); rc != 0) return rc;
+                       compress_error_percent / 100, solvers); rc != 0) return rc;
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "relight-accuracy: error: %s\n", e.what());

@@ -89,7 +89,7 @@ int ParseParamText(const std::string& text, int64_t time_us, NamedChange out[3],
 
   Param kind = Param::kDimmer;
   if (!ParamFromName(param, &kind)) {
-    return fail("unknown parameter '" + param + "' (pan, tilt, roll, zoom, dimmer, r, g, b, colour)");
+    return fail("unknown parameter '" + param + "' (pan, tilt, roll, zoom, dimmer, r, g, b, colour; emitters also x, y, size)");
   }
   bool percent = false;
   if (param == "dimmer" && !value.empty() && value.back() == '%') {

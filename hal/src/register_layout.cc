@@ -5,7 +5,7 @@ namespace {
 
 constexpr const char* kNames[kChannelCount] = {"dimmer", "pan",  "pan_fine", "tilt",  "tilt_fine", "roll",
                                                "roll_fine", "r", "g",        "b",     "profile",   "flags",
-                                               "zoom"};
+                                               "zoom",   "x",         "y", "size"};
 
 // The fine byte that goes with an angle's coarse one, or the coarse one itself
 // for a channel that is no angle.

@@ -155,6 +155,13 @@ size_t RegisterMap::DecodeChanges(int fixture, const uint16_t* before, const uin
   if (zoom_at >= 0 && zoom(before[zoom_at]) != zoom(after[zoom_at])) {
     emit(Param::kZoom, ZoomQ16FromRegister(zoom(after[zoom_at])));
   }
+  // An emitter's position and size: 16-bit levels, as the dimmer.
+  const Channel places[3] = {Channel::kX, Channel::kY, Channel::kSize};
+  const Param place_params[3] = {Param::kX, Param::kY, Param::kSize};
+  for (int c = 0; c < 3; ++c) {
+    const int at = layout.OffsetOf(places[c]);
+    if (at >= 0 && before[at] != after[at]) emit(place_params[c], LevelQ15FromRegister16(after[at]));
+  }
   return n;
 }
 

@@ -8,6 +8,7 @@
 // checked against the values written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
@@ -186,6 +187,75 @@ TEST(ChangePath, ADmxFrameReachesTheEngineWithoutAllocating) {
     EXPECT_EQ(s.rgb[0].raw(), 32767 - static_cast<int>(((k % 256) * 257 * 32767 + 32767) / 65535)) << d;
   }
   std::remove(rec_path.c_str());
+}
+
+
+// Issue 15: an emitter patched like a fixture ([[emitter]]), moved,
+// switched, dimmed and re-coloured 1,000 times by register writes through
+// the same path: the coalesced engine calls (a clip, a solve at Update, a
+// rescale or a removal) allocate nothing either. Off at the end, the vertex
+// luminance is the one before it was ever placed, bit for bit.
+TEST(ChangePath, EmitterChangesReachTheEngineWithoutAllocating) {
+  const std::string bake = RELIGHT_TEST_HIER_BAKE;
+  if (!FileExists(bake)) GTEST_SKIP() << "no bake at " << bake << " (ctest's MakeLivingRoomHierBake makes it)";
+  Engine engine;
+  ASSERT_TRUE(engine.Open(bake).ok());
+  hal::Patch patch;
+  const std::string text =
+      "[[emitter]]\nname = \"panel\"\nsurface = \"room/+x\"\ncentre = [6.0, 2.2, 1.5]\nwidth = 1.2\n"
+      "height = 0.9\nluminance = [2500, 2400, 2200]\nx_range_m = [-1.4, 1.4]\ny_range_m = [-0.4, 0.4]\n"
+      "size_range = [0.4, 1.0]\ndimmer = 0\nmodbus_base = 100\n";
+  ASSERT_TRUE(hal::ParsePatch(text, "emitter_alloc.toml", &patch).ok());
+  std::vector<hal::LuminaireConsole> luminaires;
+  for (const BakeLuminaire& l : engine.bake().luminaires) luminaires.push_back({l.name, l.pan_range, l.tilt_range});
+  ASSERT_TRUE(hal::ResolvePatch(luminaires, &patch).ok());
+  hal::RegisterMap map;
+  ASSERT_TRUE(hal::RegisterMap::Build(patch.fixtures, &map).ok());
+  hal::MockSource mock(patch, std::vector<uint16_t>(static_cast<size_t>(map.holding_count()), 0));
+  ASSERT_TRUE(mock.Start().ok());
+  ChangePath path;
+  const Status bound = path.Bind(&engine, patch.fixtures, nullptr, patch.emitters, "emitter_alloc.toml");
+  ASSERT_TRUE(bound.ok()) << bound.ToString();
+  ASSERT_EQ(path.emitters().count(), 1);
+  const BoundInput input{&mock, path.patch_luminaires()};
+  (void)path.Apply(0);
+  engine.Update();
+  const LuminanceView view = engine.vertex_luminance();
+  const std::vector<int32_t> before(view.begin(), view.end());
+
+  // Registers from 100: dimmer, x, y, size, r, g, b (the emitter layout).
+  g_allocations = 0;
+  g_count_allocations = true;
+  int64_t t_us = 1000;
+  int solves = 0;
+  constexpr int kChanges = 1000;
+  for (int i = 0; i < kChanges; ++i, t_us += 1000) {
+    switch (i % 5) {
+      case 0: EXPECT_EQ(mock.SetHoldingRegister(100, static_cast<uint16_t>(20000 + 40 * i), t_us), 0); break;  // on/dim
+      case 1:  // a move: x and y in one frame, one solve
+        EXPECT_EQ(mock.SetHoldingRegister(101, static_cast<uint16_t>(65 * i), t_us), 0);
+        EXPECT_EQ(mock.SetHoldingRegister(102, static_cast<uint16_t>(65535 - 60 * i), t_us), 0);
+        break;
+      case 2: EXPECT_EQ(mock.SetHoldingRegister(103, static_cast<uint16_t>(64 * i), t_us), 0); break;  // size
+      case 3: EXPECT_EQ(mock.SetHoldingRegister(105, static_cast<uint16_t>(i % 256), t_us), 0); break;  // green
+      default: EXPECT_EQ(mock.SetHoldingRegister(100, 0, t_us), 0); break;  // off
+    }
+    (void)path.Poll(input, t_us, t_us);
+    (void)path.Apply(t_us);
+    engine.Update();
+    solves += engine.last_update_emitters_solved();
+  }
+  g_count_allocations = false;
+  EXPECT_EQ(g_allocations.load(), 0) << "heap allocations on the emitter path";
+  EXPECT_EQ(path.rejected(), 0);
+  // Moved at i % 5 == 1 and resized at 2 (a solve each), re-coloured at 3 (a
+  // rescale), off at 4; on at 0 places it back where it went off, so the
+  // engine restores the slot's stored solution (no solve) except the first time.
+  EXPECT_EQ(solves, 2 * kChanges / 5 + 1);
+  EXPECT_EQ(path.emitters().engine_calls(), kChanges);
+  EXPECT_FALSE(path.emitters().on(0));
+  const LuminanceView after = engine.vertex_luminance();
+  EXPECT_TRUE(std::equal(before.begin(), before.end(), after.begin())) << "off is not the state before";
 }
 
 }  // namespace

@@ -44,8 +44,30 @@ TEST(Fader, ResetReportsEveryParameterOnce) {
   Fader fader(Fixtures(0, DimmerCurve::kLinear));
   fader.Reset(0, Dark());
   ParamChange out[kParamCount];
-  EXPECT_EQ(fader.Step(0, out), static_cast<size_t>(kParamCount));
+  // A luminaire's parameters, not an emitter's x, y and size.
+  const size_t n = fader.Step(0, out);
+  EXPECT_EQ(n, static_cast<size_t>(kFixtureParamCount));
+  for (size_t i = 0; i < n; ++i) EXPECT_LT(static_cast<int>(out[i].param), kFixtureParamCount);
   EXPECT_EQ(fader.Step(1, out), 0u);
+}
+
+// An emitter's slot (issue 15) reports its seven: dimmer, colour, x, y, size,
+// and fades x like a level.
+TEST(Fader, AnEmitterSlotReportsItsLevelsAndFadesThem) {
+  Fader fader(Fixtures(1000, DimmerCurve::kLinear));
+  int32_t values[kParamCount] = {};
+  values[static_cast<int>(Param::kX)] = 8192;
+  values[static_cast<int>(Param::kDimmer)] = 32767;
+  fader.ResetValues(0, values, /*emitter=*/true);
+  ParamChange out[kParamCount];
+  const size_t n = fader.Step(0, out);
+  EXPECT_EQ(n, 7u);
+  for (size_t i = 0; i < n; ++i) EXPECT_TRUE(IsEmitterParam(out[i].param)) << ParamName(out[i].param);
+  EXPECT_EQ(Find(out, n, Param::kX, -1), 8192);
+  ASSERT_TRUE(fader.SetTarget(Target(Param::kX, 24576), 0));
+  ASSERT_EQ(fader.Step(500000, out), 1u);
+  EXPECT_EQ(out[0].param, Param::kX);
+  EXPECT_EQ(out[0].level.raw(), 16384);  // half way
 }
 
 TEST(Fader, ZoomFadesInDegrees) {

@@ -206,7 +206,7 @@ TEST(RegisterMap, ALayoutWithRollAndFineBytesChecksEncodesAndDecodes) {
   // Every parameter moving: dimmer, pan, tilt, roll, r, g, b, in that order.
   const uint16_t all[10] = {100, 1, 2, 3, 4, 5, 6, 7, 8, 1};
   n = map.DecodeChanges(0, before, all, 0, out);
-  constexpr int kRegisterParams = kParamCount - 1;  // every parameter but zoom, which this layout lacks
+  constexpr int kRegisterParams = kFixtureParamCount - 1;  // every fixture parameter but zoom, which this layout lacks
   ASSERT_EQ(n, static_cast<size_t>(kRegisterParams));
   const Param order[kRegisterParams] = {Param::kDimmer, Param::kPan, Param::kTilt, Param::kRoll,
                                     Param::kRed,    Param::kGreen, Param::kBlue};

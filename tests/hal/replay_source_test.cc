@@ -61,7 +61,8 @@ TEST(ParamText, AngleRangeErrorsSayWhichParameterAndTheUnit) {
     EXPECT_EQ(error, "'" + text + "': " + param + " must be in -720..720 degrees");
   }
   EXPECT_EQ(ParseParamText("spot1.iris=1", 0, c, &error), 0);
-  EXPECT_NE(error.find("(pan, tilt, roll, zoom, dimmer, r, g, b, colour)"), std::string::npos) << error;
+  EXPECT_NE(error.find("(pan, tilt, roll, zoom, dimmer, r, g, b, colour; emitters also x, y, size)"), std::string::npos)
+      << error;
   for (const char* text : {"spot1.zoom=0", "spot1.zoom=180", "spot1.zoom=-20"}) {
     EXPECT_EQ(ParseParamText(text, 0, c, &error), 0) << text;
     EXPECT_EQ(error, "'" + std::string(text) + "': zoom (the full beam angle) must be in (0, 180) degrees");

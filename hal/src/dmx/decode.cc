@@ -132,6 +132,9 @@ bool DecodeDmxFrame(const DmxPersonality& p, int start_address, uint8_t start_co
     out.beam_angle = Q16_16::FromRaw(static_cast<int32_t>(p.beam_min_q16 + (span * t + 127) / 255));
   }
   if (f.Get(DmxFunction::kShutter, &v)) out.shutter_open = !p.has_shutter_ranges || p.shutter_open[v] != 0;
+  if (f.Get(DmxFunction::kX, &v)) out.x = Q1_15::FromRaw(static_cast<int16_t>(Level8ToQ15(v)));
+  if (f.Get(DmxFunction::kY, &v)) out.y = Q1_15::FromRaw(static_cast<int16_t>(Level8ToQ15(v)));
+  if (f.Get(DmxFunction::kSize, &v)) out.size = Q1_15::FromRaw(static_cast<int16_t>(Level8ToQ15(v)));
   ++out.frames;
   return true;
 }

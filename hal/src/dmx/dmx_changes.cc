@@ -81,6 +81,9 @@ size_t DmxChanges::Report(size_t index, bool blackout, Fixture& shown, ParamChan
     level(Param::kBlue, v.b);
   }
   if (v.beam_angle.raw() > 0) angle(Param::kZoom, v.beam_angle);
+  if (has(DmxFunction::kX)) level(Param::kX, v.x);
+  if (has(DmxFunction::kY)) level(Param::kY, v.y);
+  if (has(DmxFunction::kSize)) level(Param::kSize, v.size);
   shown.reported = true;
   return n;
 }

@@ -46,6 +46,9 @@ const char* DmxFunctionName(DmxFunction f) {
     case DmxFunction::kColorWheel: return "color_wheel";
     case DmxFunction::kZoom: return "zoom";
     case DmxFunction::kShutter: return "shutter";
+    case DmxFunction::kX: return "x";
+    case DmxFunction::kY: return "y";
+    case DmxFunction::kSize: return "size";
     case DmxFunction::kCount: break;
   }
   return "?";

@@ -20,13 +20,23 @@ const LuminaireConsole* Find(const std::vector<LuminaireConsole>& luminaires, co
   return nullptr;
 }
 
+bool IsEmitter(const Patch& patch, const std::string& name) {
+  for (const EmitterPatch& e : patch.emitters) {
+    if (e.control.name == name) return true;
+  }
+  return false;
+}
+
+// Inputs may drive a luminaire or an emitter.
 Status CheckFixture(const Patch& patch, const std::vector<LuminaireConsole>& luminaires, const std::string& fixture,
                     int line, const char* what) {
-  if (Find(luminaires, fixture) != nullptr) return Status::Ok();
+  if (Find(luminaires, fixture) != nullptr || IsEmitter(patch, fixture)) return Status::Ok();
   std::string list;
   for (const LuminaireConsole& l : luminaires) list += (list.empty() ? "" : ", ") + l.name;
+  for (const EmitterPatch& e : patch.emitters) list += (list.empty() ? "" : ", ") + e.control.name + " (emitter)";
   return Status(StatusCode::kNotFound,
-                Where(patch, line) + ": " + what + ": no luminaire '" + fixture + "' in the bake (it has: " + list + ")");
+                Where(patch, line) + ": " + what + ": no luminaire or emitter '" + fixture + "' (the bake has: " +
+                    list + ")");
 }
 
 std::string Span(const FixturePatch& f) {
@@ -37,7 +47,20 @@ std::string Span(const FixturePatch& f) {
 
 Status ResolvePatch(const std::vector<LuminaireConsole>& luminaires, Patch* patch) {
   for (const FixturePatch& f : patch->fixtures) {
-    RELIGHT_RETURN_IF_ERROR(CheckFixture(*patch, luminaires, f.name, f.line, "fixture"));
+    if (f.emitter >= 0) {
+      return Status(StatusCode::kInvalidArgument, Where(*patch, f.line) + ": patch resolved twice");
+    }
+    if (Find(luminaires, f.name) != nullptr) continue;
+    std::string list;
+    for (const LuminaireConsole& l : luminaires) list += (list.empty() ? "" : ", ") + l.name;
+    return Status(StatusCode::kNotFound, Where(*patch, f.line) + ": fixture: no luminaire '" + f.name +
+                                             "' in the bake (it has: " + list + ")");
+  }
+  for (const EmitterPatch& e : patch->emitters) {
+    if (Find(luminaires, e.control.name) != nullptr) {
+      return Status(StatusCode::kInvalidArgument, Where(*patch, e.control.line) + ": emitter '" + e.control.name +
+                                                      "': the bake has a luminaire of that name; name it otherwise");
+    }
   }
   for (const LuminaireConsole& l : luminaires) {
     const bool listed = std::any_of(patch->fixtures.begin(), patch->fixtures.end(),
@@ -52,6 +75,12 @@ Status ResolvePatch(const std::vector<LuminaireConsole>& luminaires, Patch* patc
     const LuminaireConsole* l = Find(luminaires, f.name);
     if (f.pan_range_q16 <= 0) f.pan_range_q16 = l->pan_range_q16;
     if (f.tilt_range_q16 <= 0) f.tilt_range_q16 = l->tilt_range_q16;
+  }
+  // Emitters after the luminaires: inputs address them as fixtures.
+  for (const EmitterPatch& e : patch->emitters) {
+    patch->fixtures.push_back(e.control);
+    patch->fixtures.back().pan_range_q16 = 540 << 16;  // unused (an emitter has no pan or tilt), but valid
+    patch->fixtures.back().tilt_range_q16 = 270 << 16;
   }
   // Explicit blocks first, then the rest in order after the highest one.
   int next = 0;

@@ -11,104 +11,13 @@
 #include <sstream>
 
 #include "../bounded_file.h"
+#include "toml_table.h"
 #include "relight/hal/param_text.h"
 #include "relight/hal/patch.h"
 
 namespace relight::hal {
+using namespace patch_reader;  // NOLINT: this file is the reader
 namespace {
-
-// Thrown inside this file only; ParsePatch turns it into a Status.
-struct PatchError {
-  std::string message;
-};
-
-class Table {
- public:
-  Table(const toml::table& table, const std::string& where, std::string what)
-      : t_(table), where_(where), what_(std::move(what)) {}
-
-  int line() const { return static_cast<int>(t_.source().begin.line); }
-
-  [[noreturn]] void Fail(const toml::node* node, const std::string& why) const {
-    const int line_no = node != nullptr ? static_cast<int>(node->source().begin.line) : line();
-    throw PatchError{where_ + ":" + std::to_string(line_no) + ": " + what_ + ": " + why};
-  }
-
-  void CheckKeys(std::initializer_list<const char*> allowed) const {
-    for (const auto& [key, node] : t_) {
-      bool known = false;
-      for (const char* a : allowed) known = known || key.str() == a;
-      if (!known) {
-        std::string list;
-        for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-        Fail(&node, "unknown key '" + std::string(key.str()) + "' (known: " + list + ")");
-      }
-    }
-  }
-
-  bool Has(const char* key) const { return t_.contains(key); }
-
-  std::string String(const char* key, const std::string& fallback, bool required = false) const {
-    const toml::node* node = t_.get(key);
-    if (node == nullptr) {
-      if (required) Fail(nullptr, std::string("missing '") + key + "'");
-      return fallback;
-    }
-    const auto v = node->value<std::string>();
-    if (!node->is_string() || !v) Fail(node, std::string("'") + key + "' must be a string");
-    return *v;
-  }
-
-  int64_t Int(const char* key, int64_t fallback, int64_t lo, int64_t hi, bool required = false) const {
-    const toml::node* node = t_.get(key);
-    if (node == nullptr) {
-      if (required) Fail(nullptr, std::string("missing '") + key + "'");
-      return fallback;
-    }
-    if (!node->is_integer()) Fail(node, std::string("'") + key + "' must be an integer");
-    const int64_t v = *node->value<int64_t>();
-    if (v < lo || v > hi) {
-      Fail(node, std::string("'") + key + "' must be in " + std::to_string(lo) + ".." + std::to_string(hi) +
-                     ", got " + std::to_string(v));
-    }
-    return v;
-  }
-
-  // `unit` (e.g. " degrees") follows the range in messages.
-  double Number(const char* key, double fallback, double lo, double hi, const char* unit = "") const {
-    const toml::node* node = t_.get(key);
-    if (node == nullptr) return fallback;
-    if (!node->is_number()) Fail(node, std::string("'") + key + "' must be a number");
-    const double v = *node->value<double>();
-    if (!std::isfinite(v) || v < lo || v > hi) {
-      char buf[200];
-      std::snprintf(buf, sizeof buf, "'%s' must be in %g..%g%s, got %g", key, lo, hi, unit, v);
-      Fail(node, buf);
-    }
-    return v;
-  }
-
-  bool Bool(const char* key, bool fallback) const {
-    const toml::node* node = t_.get(key);
-    if (node == nullptr) return fallback;
-    if (!node->is_boolean()) Fail(node, std::string("'") + key + "' must be true or false");
-    return *node->value<bool>();
-  }
-
-  const toml::array* Array(const char* key) const {
-    const toml::node* node = t_.get(key);
-    if (node == nullptr) return nullptr;
-    if (!node->is_array()) Fail(node, std::string("'") + key + "' must be an array");
-    return node->as_array();
-  }
-
-  const toml::node* Node(const char* key) const { return t_.get(key); }
-
- private:
-  const toml::table& t_;
-  const std::string& where_;
-  std::string what_;
-};
 
 int32_t DegreesQ16(double deg) { return static_cast<int32_t>(std::llround(deg * 65536.0)); }
 int32_t LevelQ15(double level) { return static_cast<int32_t>(std::lround(level * 32767.0)); }
@@ -127,7 +36,7 @@ Channel ParseChannelName(const Table& t, const char* key, const std::string& nam
   Channel channel = Channel::kDimmer;
   if (!ChannelFromName(name, &channel) || channel == Channel::kProfile || channel == Channel::kFlags) {
     t.Fail(t.Node(key), std::string("'") + key +
-                            "' must be one of dimmer, pan, pan_fine, tilt, tilt_fine, roll, roll_fine, r, g, b, zoom; "
+                            "' must be one of dimmer, pan, pan_fine, tilt, tilt_fine, roll, roll_fine, r, g, b, zoom, x, y, size; "
                             "got '" +
                             name + "'");
   }
@@ -157,61 +66,53 @@ RegisterLayout ParseLayout(const Table& t) {
   return layout;
 }
 
-// Each [[name]] entry, or an error if `name` is not an array of tables.
-template <typename Fn>
-void ForEachTable(const toml::table& root, const std::string& where, const char* name, Fn fn) {
-  const toml::node* node = root.get(name);
-  if (node == nullptr) return;
-  const toml::array* arr = node->as_array();
-  if (arr == nullptr || !arr->is_array_of_tables()) {
-    throw PatchError{where + ":" + std::to_string(node->source().begin.line) + ": '" + name +
-                     "' must be an array of tables ([[" + name + "]])"};
+}  // namespace
+
+namespace patch_reader {
+
+void ParseName(const Table& t, std::string* name) {
+  *name = t.String("name", "", true);
+  NamedChange probe[3];
+  std::string error;
+  if (ParseParamText(*name + ".dimmer=0", 0, probe, &error) != 1) {
+    t.Fail(t.Node("name"), "name '" + *name + "' must be 1.." + std::to_string(kMaxFixtureName) +
+                               " of A-Z a-z 0-9 _ -");
   }
-  int index = 0;
-  for (const toml::node& item : *arr) fn(*item.as_table(), ++index);
 }
 
-const toml::table* Section(const toml::table& root, const std::string& where, const char* name) {
-  const toml::node* node = root.get(name);
-  if (node == nullptr) return nullptr;
-  if (!node->is_table()) {
-    throw PatchError{where + ":" + std::to_string(node->source().begin.line) + ": '" + name +
-                     "' must be a table ([" + name + "])"};
+void ParseControls(const Table& t, const RegisterLayout& default_layout, FixturePatch* f) {
+  f->layout = t.Has("registers") ? ParseLayout(t) : default_layout;
+  f->modbus_base = static_cast<int>(t.Int("modbus_base", -1, 0, 65535));
+  if (f->modbus_base + f->layout.size() > 65536) {
+    t.Fail(t.Node("modbus_base"), "modbus_base " + std::to_string(f->modbus_base) + " with " +
+                                      std::to_string(f->layout.size()) + " registers passes 65535");
   }
-  return node->as_table();
+  const std::string curve = t.String("dimmer_curve", "linear");
+  if (curve == "linear") {
+    f->dimmer_curve = DimmerCurve::kLinear;
+  } else if (curve == "square") {
+    f->dimmer_curve = DimmerCurve::kSquare;
+  } else {
+    t.Fail(t.Node("dimmer_curve"), "dimmer_curve must be \"linear\" or \"square\", got \"" + curve + "\"");
+  }
+  f->fade_ms = static_cast<int32_t>(t.Int("fade_ms", 0, 0, 600000));
 }
+
+}  // namespace patch_reader
+
+namespace {
 
 void ParseFixture(const Table& t, Patch* patch) {
   t.CheckKeys({"name", "modbus_base", "registers", "pan_range_deg", "tilt_range_deg", "roll_range_deg", "dimmer_curve",
                "fade_ms"});
   FixturePatch f;
   f.line = t.line();
-  f.name = t.String("name", "", true);
-  NamedChange probe[3];
-  std::string error;
-  if (ParseParamText(f.name + ".dimmer=0", 0, probe, &error) != 1) {
-    t.Fail(t.Node("name"), "name '" + f.name + "' must be 1.." + std::to_string(kMaxFixtureName) +
-                               " of A-Z a-z 0-9 _ -");
-  }
-  f.layout = ParseLayout(t);
-  f.modbus_base = static_cast<int>(t.Int("modbus_base", -1, 0, 65535));
-  if (f.modbus_base + f.layout.size() > 65536) {
-    t.Fail(t.Node("modbus_base"), "modbus_base " + std::to_string(f.modbus_base) + " with " +
-                                      std::to_string(f.layout.size()) + " registers passes 65535");
-  }
+  ParseName(t, &f.name);
+  ParseControls(t, RegisterLayout(), &f);
   // Absent pan and tilt ranges stay 0: ResolvePatch takes the luminaire's.
   f.pan_range_q16 = DegreesQ16(t.Number("pan_range_deg", 0, 1, 1440, " degrees"));
   f.tilt_range_q16 = DegreesQ16(t.Number("tilt_range_deg", 0, 1, 1440, " degrees"));
   f.roll_range_q16 = DegreesQ16(t.Number("roll_range_deg", 360, 1, 1440, " degrees"));
-  const std::string curve = t.String("dimmer_curve", "linear");
-  if (curve == "linear") {
-    f.dimmer_curve = DimmerCurve::kLinear;
-  } else if (curve == "square") {
-    f.dimmer_curve = DimmerCurve::kSquare;
-  } else {
-    t.Fail(t.Node("dimmer_curve"), "dimmer_curve must be \"linear\" or \"square\", got \"" + curve + "\"");
-  }
-  f.fade_ms = static_cast<int32_t>(t.Int("fade_ms", 0, 0, 600000));
   for (const FixturePatch& other : patch->fixtures) {
     if (other.name == f.name) {
       t.Fail(nullptr, "fixture '" + f.name + "' is patched twice (first at line " + std::to_string(other.line) + ")");
@@ -379,9 +280,13 @@ Status ParsePatch(const std::string& text, const std::string& where, Patch* out)
                                                       std::string(e.description()));
     }
     const Table top(root, where, "patch");
-    top.CheckKeys({"fixture", "modbus_tcp", "modbus_rtu", "modbus_poller", "gpio_button", "gpio_encoder", "replay"});
+    top.CheckKeys({"fixture", "emitter", "modbus_tcp", "modbus_rtu", "modbus_poller", "gpio_button", "gpio_encoder",
+                   "replay"});
     ForEachTable(root, where, "fixture", [&](const toml::table& t, int i) {
       ParseFixture(Table(t, where, "fixture " + std::to_string(i)), &patch);
+    });
+    ForEachTable(root, where, "emitter", [&](const toml::table& t, int i) {
+      ParseEmitter(Table(t, where, "emitter " + std::to_string(i)), &patch);
     });
     if (const toml::table* t = Section(root, where, "modbus_tcp")) ParseTcp(Table(*t, where, "[modbus_tcp]"), &patch);
     if (const toml::table* t = Section(root, where, "modbus_rtu")) ParseRtu(Table(*t, where, "[modbus_rtu]"), &patch);

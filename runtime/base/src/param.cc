@@ -12,6 +12,9 @@ const char* ParamName(Param param) {
     case Param::kBlue: return "b";
     case Param::kRoll: return "roll";
     case Param::kZoom: return "zoom";
+    case Param::kX: return "x";
+    case Param::kY: return "y";
+    case Param::kSize: return "size";
   }
   return "?";
 }

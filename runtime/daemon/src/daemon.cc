@@ -10,19 +10,36 @@
 #include "relight/control/engine_binding.h"
 #include "relight/hal/dmx/dmx_replay_source.h"
 #include "relight/hal/dmx/ola_source.h"
+#include "relight/hal/param_text.h"
 #include "relight/hal/replay_source.h"
 #include "relight/hal/source_factory.h"
 
 namespace relight::daemon {
 namespace {
 
-// The holding registers that show the engine's state, for the servers' start.
-std::vector<uint16_t> RegistersFor(const Engine& engine, const hal::RegisterMap& map) {
+// The holding registers that show the engine's state (an emitter's: its
+// patch's start levels), for the servers' start.
+std::vector<uint16_t> RegistersFor(const Engine& engine, const hal::Patch& patch, const hal::RegisterMap& map) {
   std::vector<uint16_t> regs(static_cast<size_t>(map.holding_count()), 0);
   for (int f = 0; f < map.fixture_count(); ++f) {
-    const int lum = engine.FindLuminaire(map.fixture(f).name);
+    const hal::FixturePatch& fixture = map.fixture(f);
+    uint16_t* block = &regs[static_cast<size_t>(fixture.modbus_base)];
+    if (fixture.emitter >= 0) {
+      const hal::EmitterPatch& e = patch.emitters[static_cast<size_t>(fixture.emitter)];
+      FixtureState state;
+      state.dimmer = Q1_15::FromRaw(static_cast<int16_t>(e.dimmer_q15));
+      for (int c = 0; c < 3; ++c) state.rgb[c] = Q1_15::FromRaw(static_cast<int16_t>(e.rgb_q15[c]));
+      map.Encode(state, f, block);
+      const hal::Channel places[3] = {hal::Channel::kX, hal::Channel::kY, hal::Channel::kSize};
+      const int32_t levels[3] = {e.x_q15, e.y_q15, e.size_q15};
+      for (int k = 0; k < 3; ++k) {
+        if (fixture.layout.Has(places[k])) block[fixture.layout.OffsetOf(places[k])] = hal::Register16FromLevelQ15(levels[k]);
+      }
+      continue;
+    }
+    const int lum = engine.FindLuminaire(fixture.name);
     if (lum < 0) continue;
-    map.Encode(engine.state(lum), f, &regs[static_cast<size_t>(map.fixture(f).modbus_base)]);
+    map.Encode(engine.state(lum), f, block);
   }
   return regs;
 }
@@ -87,12 +104,18 @@ struct Daemon::Impl {
     if (dmx_patch.fixtures.size() > static_cast<size_t>(kMaxFixtures)) {
       return Status(StatusCode::kInvalidArgument, config.dmx_patch_path + ": more than 65535 fixtures");
     }
+    // A DMX fixture drives a luminaire or one of the patch's emitters (its slot after the luminaires).
+    const std::vector<std::string> slots = path.SlotNames();
     std::vector<uint16_t> luminaires;
     for (const hal::DmxFixturePatch& f : dmx_patch.fixtures) {
-      std::vector<uint16_t> one;
-      RELIGHT_RETURN_IF_ERROR(control::BindNames(
-          engine, {f.name}, config.dmx_patch_path + ":" + std::to_string(f.line) + ": dmx_fixture", &one));
-      luminaires.push_back(one[0]);
+      const int slot = hal::FixtureIndex(slots, f.name);
+      if (slot < 0) {
+        return Status(StatusCode::kNotFound, config.dmx_patch_path + ":" + std::to_string(f.line) +
+                                                 ": dmx_fixture: no luminaire '" + f.name +
+                                                 "' in the bake (it has: " + hal::FixtureList(slots) +
+                                                 ") nor among the --patch's emitters");
+      }
+      luminaires.push_back(static_cast<uint16_t>(slot));
     }
     dmx_luminaires = std::move(luminaires);
     dmx_is_replay = !config.dmx_replay_path.empty();
@@ -114,9 +137,9 @@ struct Daemon::Impl {
     hal::Patch live = p;
     live.replay_script.clear();  // the replay belongs to the daemon, not to reloads
     std::vector<std::unique_ptr<hal::InputSource>> sources;
-    RELIGHT_RETURN_IF_ERROR(hal::MakeInputSources(live, new_map, RegistersFor(engine, new_map), "", &sources));
+    RELIGHT_RETURN_IF_ERROR(hal::MakeInputSources(live, new_map, RegistersFor(engine, p, new_map), "", &sources));
     control::ChangePath new_path;
-    RELIGHT_RETURN_IF_ERROR(new_path.Bind(&engine, p.fixtures, &path));
+    RELIGHT_RETURN_IF_ERROR(new_path.Bind(&engine, p.fixtures, &path, p.emitters, p.where.empty() ? "patch" : p.where));
     patch = std::move(p);
     map = std::move(new_map);
     path = std::move(new_path);
@@ -294,7 +317,7 @@ Status Daemon::Open(const DaemonConfig& config) {
   const std::string script = config.replay_path.empty() ? p.replay_script : config.replay_path;
   RELIGHT_RETURN_IF_ERROR(m.Adopt(std::move(p)));
   if (!script.empty()) {
-    m.replay = std::make_unique<hal::ReplaySource>(script, control::LuminaireNames(m.engine));
+    m.replay = std::make_unique<hal::ReplaySource>(script, m.path.SlotNames());  // luminaires, then emitters
     m.BindInputs();
   }
   if (!config.dmx_replay_path.empty() && config.dmx_patch_path.empty()) {

@@ -25,6 +25,10 @@ Status ApplyToEngine(Engine& engine, const ParamChange& change) {
     // A fade's first step reports every parameter: an unchanged zoom is no
     // change, even on a luminaire without one.
     case Param::kZoom: return change.degrees == s.zoom_deg ? Status::Ok() : engine.SetZoom(index, change.degrees);
+    case Param::kX:
+    case Param::kY:
+    case Param::kSize:
+      return Status(StatusCode::kInvalidArgument, "x, y and size move emitters ([[emitter]]); a luminaire has none");
   }
   return Status(StatusCode::kInvalidArgument, "unknown parameter");
 }

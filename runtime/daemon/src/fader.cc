@@ -18,14 +18,19 @@ Fader::Fader(const std::vector<hal::FixturePatch>& fixtures) : slots_(fixtures.s
 }
 
 void Fader::Reset(int slot, const FixtureState& state) {
-  Slot& s = slots_[static_cast<size_t>(slot)];
   const int32_t values[kParamCount] = {state.pan_deg.raw(), state.tilt_deg.raw(), state.dimmer.raw(),
                                        state.rgb[0].raw(),  state.rgb[1].raw(),  state.rgb[2].raw(),
-                                       state.roll_deg.raw(), state.zoom_deg.raw()};  // in Param order
+                                       state.roll_deg.raw(), state.zoom_deg.raw()};  // in Param order; x, y, size 0
+  ResetValues(slot, values, /*emitter=*/false);
+}
+
+void Fader::ResetValues(int slot, const int32_t values[kParamCount], bool emitter) {
+  Slot& s = slots_[static_cast<size_t>(slot)];
   for (int p = 0; p < kParamCount; ++p) {
     s.ramps[p] = Ramp();
     s.ramps[p].from = s.ramps[p].to = s.ramps[p].shown = values[p];
-    s.ramps[p].report = true;
+    // Report only what the slot has: a luminaire no x, an emitter no pan.
+    s.ramps[p].report = emitter ? IsEmitterParam(static_cast<Param>(p)) : p < kFixtureParamCount;
   }
 }
 
@@ -75,8 +80,9 @@ void Fader::CopyRampsFrom(const Fader& old) {
     for (const Slot& o : old.slots_) {
       if (o.patch.name != s.patch.name) continue;
       for (int p = 0; p < kParamCount; ++p) {
+        const bool reported = s.ramps[p].report;  // what the slot has (ResetValues)
         s.ramps[p] = o.ramps[p];
-        s.ramps[p].report = true;
+        s.ramps[p].report = reported;
       }
     }
   }

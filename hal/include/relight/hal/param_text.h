@@ -24,6 +24,7 @@ struct NamedChange {
 //   pan, tilt, roll   degrees in -720..720   dimmer   0..1, or 0..100%
 //   r, g, b           0..1                   colour   R,G,B, each 0..1 (three changes)
 //   zoom              the full beam angle at half peak, degrees in (0, 180)
+//   x, y, size        an emitter's position and size, 0..1 across the ranges its patch entry declares
 // (roll: the fixture turned about its beam axis, engine.h SetRoll; zoom: engine.h SetZoom)
 // Fills out[0..n) and returns n (1, or 3 for colour); on error returns 0 and
 // writes a message that quotes the text and says what was expected.

@@ -13,6 +13,16 @@
 //   dimmer_curve = "square"
 //   fade_ms = 200
 //
+//   [[emitter]]            # a run-time light source on a surface (docs/modbus.md "Emitters")
+//   name = "panel"
+//   surface = "room/+z"
+//   centre = [3.0, 2.0, 2.7]   # a rectangle: centre (metres, on the surface), width along
+//   width = 1.0                # the surface's u axis, height along v; or polygon = [[x,y,z], ...]
+//   height = 0.6
+//   luminance = 3000       # cd/m^2 at dimmer 1, or [R, G, B]
+//   x_range_m = [-1, 1]    # parameter x 0..1 moves it this far along u (y_range_m: along v)
+//   size_range = [0.5, 1]  # parameter size 0..1 scales it so
+//
 //   [modbus_tcp]
 //   port = 1502            # listens on 127.0.0.1 unless `listen` says otherwise
 //
@@ -20,6 +30,7 @@
 // [[gpio_encoder]], [replay]) present = that backend is started.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -46,6 +57,37 @@ struct FixturePatch {
   DimmerCurve dimmer_curve = DimmerCurve::kLinear;
   int32_t fade_ms = 0;                 // linear ramp to each new value; 0 = jump
   int line = 0;                        // where it was declared (0: not from a file)
+  // >= 0: this entry is Patch::emitters[emitter] (appended by ResolvePatch),
+  // not a luminaire of the bake.
+  int emitter = -1;
+};
+
+// What the engine can hold at once (relight/engine/surface_emitter.h
+// kMaxSurfaceEmitters; the control stage checks the two agree).
+inline constexpr int kMaxPatchEmitters = 8;
+inline constexpr int kMaxPatchEmitterCorners = 8;  // kMaxSurfaceEmitterCorners
+
+// A run-time light source on a surface of the bake ([[emitter]]): hal reads
+// its numbers and treats its parameters as a fixture's (dimmer, r, g, b and
+// the levels x, y, size, relight/base/param.h); what they mean on the
+// surface is the control stage's (relight/control/emitter_binding.h).
+struct EmitterPatch {
+  std::string surface;                 // the bake's surface name, e.g. "room/+z"
+  // The shape at offset 0 and scale 1: a rectangle (centre, width along the
+  // surface's u axis, height along v), or a convex polygon (corners, when
+  // `polygon` is not empty). Q16.16 metres.
+  std::array<int32_t, 3> centre_q16 = {};
+  int32_t width_q16 = 0, height_q16 = 0;
+  std::vector<std::array<int32_t, 3>> polygon_q16;
+  int32_t luminance_q12[3] = {0, 0, 0};  // LightQ12 cd/m^2 per channel at dimmer 1, colour 1, 1, 1
+  // Offsets along u and v (Q16.16 metres) for x, y = 0 and 1; scale (Q16.16) for size = 0 and 1.
+  int32_t x_range_q16[2] = {0, 0};
+  int32_t y_range_q16[2] = {0, 0};
+  int32_t size_range_q16[2] = {65536, 65536};
+  // Levels (Q1.15) at start: dimmer, x, y, size, and the colour.
+  int32_t dimmer_q15 = 32767, x_q15 = 0, y_q15 = 0, size_q15 = 32767;
+  int32_t rgb_q15[3] = {32767, 32767, 32767};
+  FixturePatch control;                // name, Modbus block, curve, fade: as a fixture's
 };
 
 struct ModbusTcpConfig {
@@ -114,7 +156,8 @@ struct GpioEncoderConfig {
 };
 
 struct Patch {
-  std::vector<FixturePatch> fixtures;
+  std::vector<FixturePatch> fixtures;  // after ResolvePatch: the luminaires, then the emitters
+  std::vector<EmitterPatch> emitters;
   ModbusTcpConfig modbus_tcp;
   ModbusRtuConfig modbus_rtu;
   ModbusPollerConfig modbus_poller;
@@ -143,7 +186,10 @@ struct LuminaireConsole {
 // luminaire's; fixtures without modbus_base get the next free block (as many
 // registers as their layout); blocks must not overlap or pass 65535. Buttons,
 // encoders and the poller map must name known fixtures, and poller entries a
-// register the fixture's layout has. Errors name file:line.
+// register the fixture's layout has. Emitters (at most kMaxPatchEmitters,
+// names unique among luminaires and emitters) are appended to `fixtures`
+// after the luminaires, with `emitter` set, so every input addresses them
+// as fixtures. Errors name file:line.
 Status ResolvePatch(const std::vector<LuminaireConsole>& luminaires, Patch* patch);
 
 }  // namespace relight::hal

@@ -22,8 +22,9 @@ namespace relight::hal {
 
 enum class Channel : uint8_t {
   kDimmer, kPan, kPanFine, kTilt, kTiltFine, kRoll, kRollFine, kRed, kGreen, kBlue, kProfile, kFlags, kZoom,
+  kX, kY, kSize,  // an emitter's position and size: 0..65535 = 0..1 of its declared ranges, as the dimmer
 };
-inline constexpr int kChannelCount = 13;
+inline constexpr int kChannelCount = 16;
 inline constexpr int kMaxRegistersPerFixture = kChannelCount;  // each channel at most once
 
 const char* ChannelName(Channel channel);

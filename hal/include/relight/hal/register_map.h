@@ -11,7 +11,8 @@
 //   +6 profile  beam/profile index: 0 (bakes carry one profile per luminaire)
 //   +7 flags    bit 0: on (0 = off, dimmer output 0); other bits must be 0
 // A layout may add roll (0..65535 over the roll range, 32768 = 0 degrees) and
-// zoom (the beam angle in 0.01 degrees, 0..18000) and split pan, tilt or roll
+// zoom (the beam angle in 0.01 degrees, 0..18000), an emitter x, y and size
+// (0..65535 = 0..1 of its declared ranges) and split pan, tilt or roll
 // into coarse and fine bytes.
 // Input registers (status), see kStatus*.
 //
@@ -88,7 +89,7 @@ class RegisterMap {
   void Encode(const FixtureState& state, int fixture, uint16_t* out) const;
   // Parameter changes between two register images of one fixture's block
   // (layout().size() registers each): only the parameters whose value
-  // differs, in the order dimmer, pan, tilt, roll, r, g, b, zoom, each naming the
+  // differs, in the order dimmer, pan, tilt, roll, r, g, b, zoom, x, y, size, each naming the
   // fixture by its index `fixture`. Returns how many (<= kParamCount).
   size_t DecodeChanges(int fixture, const uint16_t* before, const uint16_t* after, int64_t time_us,
                        ParamChange out[kParamCount]) const;

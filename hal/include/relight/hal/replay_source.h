@@ -5,6 +5,7 @@
 //   0.0   ceiling_spot.pan=0  ceiling_spot.tilt=20
 //   1.5   ceiling_spot.pan=35 corner_uplight.colour=1,0.55,0.25
 //   2.0   ceiling_spot.roll=90   # degrees about the beam axis
+//   3.0   panel.dimmer=1  panel.x=0.4  panel.size=0.5   # a patch [[emitter]]: x, y, size 0..1 of its ranges
 //
 // Times are seconds from the start of the script, non-decreasing. The whole
 // script is read and checked at Start(), and its fixture names resolved to

@@ -27,6 +27,7 @@ enum class DmxFunction : uint8_t {
   kColorWheel,                        // slots: DMX range -> filter colour
   kZoom,                              // beam angle between the lens limits
   kShutter,                           // ranges that close it; otherwise open
+  kX, kY, kSize,                      // a run-time emitter's position and size: 0..255 = 0..1 of its ranges
   kCount
 };
 

@@ -18,6 +18,7 @@
 //            zoom (reversed for big->small), 64-bit product; 0 when the
 //            type gives no lens range.
 //   shutter  open unless the value lies in a range the type marks closed.
+//   x, y, size  an emitter's levels, Q1.15 = round(v * 32767 / 255).
 // A 16-bit value (dimmer, pan, tilt) changes only when both of its bytes are
 // in the frame: a frame that stops between coarse and fine keeps the
 // previous value. 8-bit values absent from a short frame keep theirs too.
@@ -43,6 +44,7 @@ struct DmxFixtureValues {
   Q1_15 r = Q1_15::FromRaw(32767), g = Q1_15::FromRaw(32767), b = Q1_15::FromRaw(32767);
   Q16_16 beam_angle = Q16_16::FromRaw(0);  // degrees; 0: the bake's own
   bool shutter_open = true;
+  Q1_15 x = Q1_15::FromRaw(0), y = Q1_15::FromRaw(0), size = Q1_15::FromRaw(0);  // an emitter's levels
   uint32_t frames = 0;                     // frames decoded into these values
 };
 

@@ -15,12 +15,22 @@
 
 namespace relight {
 
-enum class Param : uint8_t { kPan, kTilt, kDimmer, kRed, kGreen, kBlue, kRoll, kZoom };
-inline constexpr int kParamCount = 8;
+// kX, kY and kSize belong to run-time emitters (a patch's [[emitter]]): levels
+// 0..1 across the ranges the patch declares for them, so inputs treat them
+// like a dimmer and only the control stage knows what they move (metres on a
+// surface, a scale). Luminaires have none: kFixtureParamCount come first.
+enum class Param : uint8_t { kPan, kTilt, kDimmer, kRed, kGreen, kBlue, kRoll, kZoom, kX, kY, kSize };
+inline constexpr int kParamCount = 11;
+inline constexpr int kFixtureParamCount = 8;
 // pan, tilt, roll and zoom (the full beam angle) carry degrees; the rest Q1.15 levels.
 inline constexpr bool IsAngle(Param param) {
   return param == Param::kPan || param == Param::kTilt || param == Param::kRoll ||
          param == Param::kZoom;
+}
+// The parameters a run-time emitter has: dimmer, colour, x, y, size.
+inline constexpr bool IsEmitterParam(Param p) {
+  return p == Param::kDimmer || p == Param::kRed || p == Param::kGreen || p == Param::kBlue || p == Param::kX ||
+         p == Param::kY || p == Param::kSize;
 }
 
 inline constexpr size_t kMaxFixtureName = 47;
@@ -58,7 +68,7 @@ struct ParamChange {
 };
 
 const char* ParamName(Param param);
-// "pan", "tilt", "roll", "dimmer", "r", "g", "b", "zoom" -> Param; false for anything else.
+// "pan", "tilt", "roll", "dimmer", "r", "g", "b", "zoom", "x", "y", "size" -> Param; false for anything else.
 bool ParamFromName(const std::string& name, Param* out);
 
 }  // namespace relight

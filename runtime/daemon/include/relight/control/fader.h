@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "relight/base/fixture_state.h"
@@ -29,9 +30,14 @@ class Fader {
   explicit Fader(const std::vector<hal::FixturePatch>& fixtures);
 
   int slot_count() const { return static_cast<int>(slots_.size()); }
+  const std::string& slot_name(int slot) const { return slots_[static_cast<size_t>(slot)].patch.name; }
   // Starts slot `slot` at `state` without a ramp (its dimmer taken as the
   // control level). The next Step() reports all of its parameters.
   void Reset(int slot, const FixtureState& state);
+  // The same from raw values in Param order (an emitter's levels). The next
+  // Step() reports the parameters the slot has: an emitter's (IsEmitterParam)
+  // or a luminaire's (the first kFixtureParamCount).
+  void ResetValues(int slot, const int32_t values[kParamCount], bool emitter);
   // A new target for slot change.fixture; ramps from the value shown at
   // now_us. False if there is no such slot.
   bool SetTarget(const ParamChange& change, int64_t now_us);
@@ -43,7 +49,7 @@ class Fader {
   bool Idle(int64_t now_us) const;
   // Takes over the ramps of the fixtures `old` also has (same name), so a
   // patch reload does not jump; the new fixture's fade time applies to the
-  // next target. Reports every parameter on the next Step().
+  // next target. Reports every parameter the slot has on the next Step().
   void CopyRampsFrom(const Fader& old);
 
  private:
