@@ -1,81 +1,181 @@
-// Run-time surface emitters (FE) against one full recombination, in one run:
+// Run-time surface emitters (FE): time per change against a pan change, in
+// one run (issue 15's bar: place, move by 10 cm, luminance, remove, each
+// <= 5 ms median and <= 15 ms p99, as a ratio to a pan change):
 //
 //   BM_PanChange          Engine::Update() after a pan change: one luminaire's
 //                         SH terms and direct term recombined (the baseline)
-//   BM_EmitterMove        SetSurfaceEmitter to a new place + Update(): clip,
-//                         fixed-point solve (3 channels unless they reflect
-//                         alike), leaves to vertices, mix
-//   BM_EmitterPlaceOnly   SetSurfaceEmitter alone: the clip
+//   BM_EmitterPlace       a new light: SetSurfaceEmitter on a removed slot,
+//                         where it overlaps nothing it was (cycling three
+//                         spots) + Update(): clip, a solve from the
+//                         emission alone, vertices, mix
+//   BM_EmitterMove10cm    SetSurfaceEmitter 10 cm on (round a 10 cm square,
+//                         never straight back) + Update(): clip, a solve
+//                         starting from the previous one, vertices, mix
 //   BM_EmitterLuminance   SetSurfaceEmitterLuminance + Update(): a rescale
+//   BM_EmitterRemove      RemoveSurfaceEmitter + Update(): the remix without it
+//   BM_EmitterPlaceOnly   SetSurfaceEmitter alone: the clip
+//
+// Each iteration is timed on its own (wall clock, manual time); the counters
+// give its median and 99th percentile (p50_ms, p99_ms), the median CPU time
+// of the process (both engine threads, cpu_ms) and the median over the pan
+// change's median of this run (x_pan). Sweeps: the solve's last count.
 //
 //   surface_emitter_bench BAKE.rlb SURFACE x0,y0,z0 x1,y1,z1 x2,y2,z2 [--benchmark_...]
 //
-// The emitter is the triangle given, alternating with itself moved by 0.25 of
-// its first edge. docs/hierarchy.md has the figures and the command.
+// The emitter is the triangle given; the place spots are it and it moved by
+// its first edge's length + 5 cm along that edge and across it, so the
+// surface must have room for them. docs/hierarchy.md has the figures.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <string>
+#include <vector>
 
 #include "relight/engine/engine.h"
 
 namespace {
 
+using Clock = std::chrono::steady_clock;
+
 relight::Engine* g_engine = nullptr;
-relight::SurfaceEmitterShape g_shape[2];
+relight::SurfaceEmitterShape g_place[3];  // far apart
+relight::SurfaceEmitterShape g_square[4];  // 10 cm apart
+double g_pan_median_ms = 0;
 
 const relight::LightQ12 kWhite[3] = {relight::LightQ12::FromRaw(1000 << 12),
                                      relight::LightQ12::FromRaw(1000 << 12),
                                      relight::LightQ12::FromRaw(1000 << 12)};
 
-void BM_PanChange(benchmark::State& state) {
-  int i = 0;
-  for (auto _ : state) {
-    (void)g_engine->SetPanTilt(0, relight::Q16_16::FromInt(10 + (i++ & 1) * 20), relight::Q16_16::FromInt(30));
-    g_engine->Update();
-    benchmark::DoNotOptimize(g_engine->vertex_luminance());
-  }
+double CpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-void BM_EmitterMove(benchmark::State& state) {
+// Times one change: `change` then Update(), wall and CPU.
+class Samples {
+ public:
+  template <typename F>
+  void Time(benchmark::State& state, F change) {
+    const double cpu0 = CpuSeconds();
+    const Clock::time_point t0 = Clock::now();
+    change();
+    g_engine->Update();
+    benchmark::DoNotOptimize(g_engine->vertex_luminance());
+    const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+    state.SetIterationTime(wall);
+    wall_ms_.push_back(1e3 * wall);
+    cpu_ms_.push_back(1e3 * (CpuSeconds() - cpu0));
+  }
+  // Sets the counters; returns the wall median (ms).
+  double Report(benchmark::State& state) {
+    if (wall_ms_.empty()) return 0;
+    const double median = Quantile(&wall_ms_, 0.5);
+    state.counters["p50_ms"] = median;
+    state.counters["p99_ms"] = Quantile(&wall_ms_, 0.99);
+    state.counters["cpu_ms"] = Quantile(&cpu_ms_, 0.5);
+    if (g_pan_median_ms > 0) state.counters["x_pan"] = median / g_pan_median_ms;
+    return median;
+  }
+
+ private:
+  static double Quantile(std::vector<double>* v, double q) {
+    std::sort(v->begin(), v->end());
+    const size_t i = static_cast<size_t>(std::ceil(q * static_cast<double>(v->size()))) - 1;
+    return (*v)[std::min(i, v->size() - 1)];
+  }
+  std::vector<double> wall_ms_, cpu_ms_;
+};
+
+void BM_PanChange(benchmark::State& state) {
+  Samples samples;
+  int i = 0;
+  for (auto _ : state) {
+    samples.Time(state, [&] {
+      (void)g_engine->SetPanTilt(0, relight::Q16_16::FromInt(10 + (i++ & 1) * 20), relight::Q16_16::FromInt(30));
+    });
+  }
+  g_pan_median_ms = samples.Report(state);
+}
+
+void BM_EmitterPlace(benchmark::State& state) {
+  Samples samples;
   int i = 0, sweeps = 0;
   for (auto _ : state) {
-    (void)g_engine->SetSurfaceEmitter(0, g_shape[i++ & 1], kWhite);
+    // A new light: removed first (untimed), so the solve starts from the emission.
+    (void)g_engine->RemoveSurfaceEmitter(0);
     g_engine->Update();
+    samples.Time(state, [&] { (void)g_engine->SetSurfaceEmitter(0, g_place[i++ % 3], kWhite); });
     sweeps = g_engine->last_update_emitter_sweeps();
-    benchmark::DoNotOptimize(g_engine->vertex_luminance());
   }
+  samples.Report(state);
   state.counters["sweeps"] = sweeps;
 }
 
-void BM_EmitterPlaceOnly(benchmark::State& state) {
-  int i = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(g_engine->SetSurfaceEmitter(1, g_shape[i++ & 1], kWhite));
-  (void)g_engine->RemoveSurfaceEmitter(1);
+void BM_EmitterMove10cm(benchmark::State& state) {
+  Samples samples;
+  int i = 0, sweeps = 0;
+  (void)g_engine->SetSurfaceEmitter(0, g_square[0], kWhite);
+  g_engine->Update();
+  for (auto _ : state) {
+    samples.Time(state, [&] { (void)g_engine->SetSurfaceEmitter(0, g_square[++i % 4], kWhite); });
+    sweeps = g_engine->last_update_emitter_sweeps();
+  }
+  samples.Report(state);
+  state.counters["sweeps"] = sweeps;
 }
 
 void BM_EmitterLuminance(benchmark::State& state) {
-  (void)g_engine->SetSurfaceEmitter(0, g_shape[0], kWhite);
-  g_engine->Update();
+  Samples samples;
   int i = 0;
   for (auto _ : state) {
     const int32_t l = (500 + (i++ & 1) * 300) << 12;
     const relight::LightQ12 rgb[3] = {relight::LightQ12::FromRaw(l), relight::LightQ12::FromRaw(l / 2),
                                       relight::LightQ12::FromRaw(l / 4)};
-    (void)g_engine->SetSurfaceEmitterLuminance(0, rgb);
-    g_engine->Update();
-    benchmark::DoNotOptimize(g_engine->vertex_luminance());
+    samples.Time(state, [&] { (void)g_engine->SetSurfaceEmitterLuminance(0, rgb); });
   }
+  samples.Report(state);
 }
 
-BENCHMARK(BM_PanChange)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_EmitterMove)->Unit(benchmark::kMillisecond);
+void BM_EmitterRemove(benchmark::State& state) {
+  Samples samples;
+  for (auto _ : state) {
+    samples.Time(state, [&] { (void)g_engine->RemoveSurfaceEmitter(0); });
+    // Back for the next one (the slot kept its solution: no solve), untimed.
+    (void)g_engine->SetSurfaceEmitter(0, g_square[0], kWhite);
+    g_engine->Update();
+  }
+  samples.Report(state);
+}
+
+void BM_EmitterPlaceOnly(benchmark::State& state) {
+  int i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(g_engine->SetSurfaceEmitter(1, g_square[i++ & 1], kWhite));
+  (void)g_engine->RemoveSurfaceEmitter(1);
+}
+
+BENCHMARK(BM_PanChange)->UseManualTime()->Iterations(300)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EmitterPlace)->UseManualTime()->Iterations(150)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EmitterMove10cm)->UseManualTime()->Iterations(200)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EmitterLuminance)->UseManualTime()->Iterations(300)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EmitterRemove)->UseManualTime()->Iterations(300)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EmitterPlaceOnly)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_EmitterLuminance)->Unit(benchmark::kMillisecond);
 
 bool ParseCorner(const char* text, double out[3]) {
   return std::sscanf(text, "%lf,%lf,%lf", &out[0], &out[1], &out[2]) == 3;
+}
+
+relight::SurfaceEmitterShape Shape(const char* surface, const double c[3][3], const double offset_m[3]) {
+  relight::SurfaceEmitterShape s;
+  s.surface = surface;
+  s.corner_count = 3;
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 3; ++i) s.corners_q16[k][i] = static_cast<int32_t>(std::lround((c[k][i] + offset_m[i]) * 65536.0));
+  return s;
 }
 
 }  // namespace
@@ -92,17 +192,33 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", st.ToString().c_str());
     return 2;
   }
-  for (int s = 0; s < 2; ++s) {
-    g_shape[s].surface = argv[2];
-    g_shape[s].corner_count = 3;
-    for (int k = 0; k < 3; ++k)
-      for (int i = 0; i < 3; ++i)
-        g_shape[s].corners_q16[k][i] =
-            static_cast<int32_t>(std::lround((c[k][i] + 0.25 * s * (c[1][i] - c[0][i])) * 65536.0));
+  // u along the first edge, w across it in the triangle's plane.
+  double u[3], w[3], len = 0, dot = 0, wlen = 0;
+  for (int i = 0; i < 3; ++i) len += (c[1][i] - c[0][i]) * (c[1][i] - c[0][i]);
+  len = std::sqrt(len);
+  for (int i = 0; i < 3; ++i) u[i] = (c[1][i] - c[0][i]) / len;
+  for (int i = 0; i < 3; ++i) dot += (c[2][i] - c[0][i]) * u[i];
+  for (int i = 0; i < 3; ++i) w[i] = c[2][i] - c[0][i] - dot * u[i];
+  for (int i = 0; i < 3; ++i) wlen += w[i] * w[i];
+  wlen = std::sqrt(wlen);
+  for (int i = 0; i < 3; ++i) w[i] /= wlen;
+  const double far = len + 0.05;
+  for (int s = 0; s < 3; ++s) {
+    double o[3];
+    for (int i = 0; i < 3; ++i) o[i] = (s == 1 ? far * u[i] : 0) + (s == 2 ? far * w[i] : 0);
+    g_place[s] = Shape(argv[2], c, o);
   }
-  if (relight::Status st = engine.SetSurfaceEmitter(0, g_shape[1], kWhite); !st.ok()) {
-    std::fprintf(stderr, "%s\n", st.ToString().c_str());
-    return 2;
+  const double square[4][2] = {{0, 0}, {0.1, 0}, {0.1, 0.1}, {0, 0.1}};
+  for (int s = 0; s < 4; ++s) {
+    double o[3];
+    for (int i = 0; i < 3; ++i) o[i] = square[s][0] * u[i] + square[s][1] * w[i];
+    g_square[s] = Shape(argv[2], c, o);
+  }
+  for (const relight::SurfaceEmitterShape* s : {&g_place[0], &g_place[1], &g_place[2], &g_square[2]}) {
+    if (relight::Status st = engine.SetSurfaceEmitter(0, *s, kWhite); !st.ok()) {
+      std::fprintf(stderr, "%s\n", st.ToString().c_str());
+      return 2;
+    }
   }
   engine.Update();
   g_engine = &engine;

@@ -90,7 +90,7 @@ void Engine::Impl::Update() {
   last_luminaires = static_cast<int>(threads.rebuild_count);
   last_terms = RebuildLuminaires(&bake, &lums, &work, &threads);  // on all threads
   if (last_luminaires > 0) remix = true;
-  last_emitters = emitters.SolvePending();
+  last_emitters = emitters.SolvePending(&threads.pool);
   if (last_emitters > 0) remix = true;
   if (remix) {
     RemixOnThreads(bake, lums, &work, mix.data(), &threads, &out);

@@ -1,16 +1,24 @@
 // Fixed-point hierarchical solve (surface_emitter_solve.h).
 //
-// Scaling and overflow: B (exitance) Q32, at most ~2^36 for unit emission
-// (B <= S / (1 - rho)). A gather sums f (UQ0.32) x B into Int128 (Q64, <
-// 2^68 x links) and g (Q8.23) x B (Q55); both are rounded back to int64 Q32
-// (per metre for g). Moving a gradient's term between a node's centroid and
-// the surface origin multiplies Q32 by Q16.16 metres in Int128. Reflectance
-// UQ32 (2^32 = 1) x irradiance Q32 -> Int128, rounded back to Q32. Pull:
-// child weights UQ32 x B Q32, summed in Int128.
+// Scaling and overflow: B (exitance) Q32 int64, at most ~2^36 for unit
+// emission (B <= S / (1 - rho)). Gathers read B as int32 Q24 (the "view",
+// saturated to +-view_limit_): f (UQ0.32) x view is < 2^63 summed over a
+// node's links because Init sets view_limit_ = (2^63 - 1) / (the largest sum
+// over a node's links of f, |g_u| or |g_v|), capped at 2^31 - 1; a bake's
+// factors sum to about 1 per node, so the cap is what applies and unit
+// emission reads exactly up to B = 128. f x view is Q56, shifted to Q32;
+// g (Q8.23) x view is Q47, shifted to Q32 per metre. Moving a gradient's
+// term between a node's centroid and the surface origin multiplies Q32 by
+// Q16.16 metres in Int128. Reflectance UQ32 (2^32 = 1) x irradiance Q32 ->
+// Int128, rounded back to Q32. Pull: child weights UQ32 x B Q32, summed in
+// Int128.
 #include "surface_emitter_solve.h"
+
+#include <cstring>
 
 #include "relight/base/fixed_ops.h"
 #include "surface_emitter_frame.h"
+#include "surface_emitter_gather_avx2.h"
 
 namespace relight {
 namespace {
@@ -21,7 +29,54 @@ int64_t GradientTerm(int64_t gu, int64_t gv, const int32_t* uv_q16) {
                          -16);
 }
 
+constexpr int kViewShift = kExitanceFracBits - kGatherFracBits;
+
+// The scalar gathers (surface_emitter_gather_avx2.h has the contract).
+void GatherLeaf(const EmitterGatherEntry* e, uint32_t count, const int32_t* view, int64_t a[3]) {
+  int64_t a0 = 0, a1 = 0, a2 = 0;
+  for (uint32_t i = 0; i < count; ++i) {
+    const int32_t* src = &view[4 * size_t{e[i].source}];
+    const int64_t f = e[i].f;
+    a0 += f * src[0];
+    a1 += f * src[1];
+    a2 += f * src[2];
+  }
+  a[0] = a0;
+  a[1] = a1;
+  a[2] = a2;
+}
+
+void GatherInner(const EmitterGatherEntry* e, const int32_t* g, uint32_t count, const int32_t* view, int64_t a[3],
+                 int64_t u[3], int64_t v[3]) {
+  int64_t a0 = 0, a1 = 0, a2 = 0, u0 = 0, u1 = 0, u2 = 0, v0 = 0, v1 = 0, v2 = 0;
+  for (uint32_t i = 0; i < count; ++i) {
+    const int32_t* src = &view[4 * size_t{e[i].source}];
+    const int64_t f = e[i].f, du = g[2 * i], dv = g[2 * i + 1];
+    a0 += f * src[0];
+    a1 += f * src[1];
+    a2 += f * src[2];
+    u0 += du * src[0];
+    u1 += du * src[1];
+    u2 += du * src[2];
+    v0 += dv * src[0];
+    v1 += dv * src[1];
+    v2 += dv * src[2];
+  }
+  a[0] = a0, a[1] = a1, a[2] = a2;
+  u[0] = u0, u[1] = u1, u[2] = u2;
+  v[0] = v0, v[1] = v1, v[2] = v2;
+}
+
 }  // namespace
+
+struct HierarchySolveQ32::Sweep {
+  HierarchySolveQ32* self;
+  const int64_t* emitted;
+  const int64_t* extra;
+  int64_t* b;
+  int64_t change[kEmitterSolveBlocks];
+  int64_t peak[kEmitterSolveBlocks];
+};
 
 Status HierarchySolveQ32::Init(const Bake& bake) {
   if (!bake.hierarchy) return Status(StatusCode::kUnsupported, "bake has no hierarchy");
@@ -33,23 +88,45 @@ Status HierarchySolveQ32::Init(const Bake& bake) {
     if (h.link_f_pq[i] != 0) ++gather_offsets_[h.link_p[i] + 1];
     if (h.link_f_qp[i] != 0) ++gather_offsets_[h.link_q[i] + 1];
   }
-  for (uint32_t k = 0; k < n; ++k) gather_offsets_[k + 1] += gather_offsets_[k];
-  const uint32_t entries = gather_offsets_[n];
-  gather_source_.assign(entries, 0);
-  gather_f_.assign(entries, 0);
-  gather_g_.assign(size_t{entries} * 2, 0);
-  std::vector<uint32_t> fill(gather_offsets_.begin(), gather_offsets_.end() - 1);
+  gradient_offsets_.assign(size_t{n} + 1, 0);
+  for (uint32_t k = 0; k < n; ++k) {
+    gradient_offsets_[k + 1] = gradient_offsets_[k] + (h.leaf(k) ? 0 : gather_offsets_[k + 1]);
+    gather_offsets_[k + 1] += gather_offsets_[k];
+  }
+  gather_.assign(gather_offsets_[n], EmitterGatherEntry{0, 0});
+  gradient_.assign(size_t{gradient_offsets_[n]} * 2, 0);
+  std::vector<uint32_t> fill(n, 0);
   const auto add = [&](uint32_t to, uint32_t from, uint32_t f, const int32_t* g) {
-    const uint32_t e = fill[to]++;
-    gather_source_[e] = from;
-    gather_f_[e] = f;
-    gather_g_[2 * size_t{e}] = g[0];
-    gather_g_[2 * size_t{e} + 1] = g[1];
+    const uint32_t i = fill[to]++;
+    gather_[gather_offsets_[to] + i] = EmitterGatherEntry{from, f};
+    if (h.leaf(to)) return;  // a leaf's links carry no gradient
+    gradient_[2 * size_t{gradient_offsets_[to] + i}] = g[0];
+    gradient_[2 * size_t{gradient_offsets_[to] + i} + 1] = g[1];
   };
   for (uint32_t i = 0; i < h.link_count(); ++i) {
     if (h.link_f_pq[i] != 0) add(h.link_p[i], h.link_q[i], h.link_f_pq[i], &h.link_g_pq[2 * size_t{i}]);
     if (h.link_f_qp[i] != 0) add(h.link_q[i], h.link_p[i], h.link_f_qp[i], &h.link_g_qp[2 * size_t{i}]);
   }
+  // The largest sum a gather can multiply the view by (see the top comment).
+  uint64_t row_max = 1;
+  bool vector_ok = true;
+  for (uint32_t k = 0; k < n; ++k) {
+    uint64_t f = 0, du = 0, dv = 0;
+    for (uint32_t e = gather_offsets_[k]; e < gather_offsets_[k + 1]; ++e) {
+      f += gather_[e].f;
+      if (gather_[e].f >= (uint32_t{1} << 31)) vector_ok = false;  // _mm256_mul_epi32 is signed
+    }
+    for (uint32_t e = 2 * gradient_offsets_[k]; e < 2 * gradient_offsets_[k + 1]; e += 2) {
+      du += static_cast<uint64_t>(gradient_[e] < 0 ? -int64_t{gradient_[e]} : gradient_[e]);
+      dv += static_cast<uint64_t>(gradient_[e + 1] < 0 ? -int64_t{gradient_[e + 1]} : gradient_[e + 1]);
+    }
+    for (uint64_t s : {f, du, dv})
+      if (s > row_max) row_max = s;
+  }
+  const uint64_t limit = static_cast<uint64_t>(INT64_MAX) / row_max;
+  view_limit_ = limit >= uint64_t{INT32_MAX} ? INT32_MAX : static_cast<int32_t>(limit);
+  vector_ = vector_ok && EmitterGatherHasAvx2();
+
   child_weight_q32_.assign(n, 0);
   centre_uv_q16_.assign(size_t{n} * 2, 0);
   rho_q32_.assign(size_t{n} * 3, 0);
@@ -72,13 +149,30 @@ Status HierarchySolveQ32::Init(const Bake& bake) {
     }
   }
   run_begin_.push_back(n);
+  // Blocks of whole surfaces with about equal gather work.
+  const uint32_t runs = static_cast<uint32_t>(run_begin_.size() - 1);
+  const uint64_t total = gather_offsets_[n] + gradient_offsets_[n];
+  block_run_[0] = 0;
+  uint32_t r = 0;
+  for (int b = 1; b < kEmitterSolveBlocks; ++b) {
+    const uint64_t target = total * static_cast<uint64_t>(b) / kEmitterSolveBlocks;
+    while (r < runs && gather_offsets_[run_begin_[r]] + gradient_offsets_[run_begin_[r]] < target) ++r;
+    block_run_[b] = r;
+  }
+  block_run_[kEmitterSolveBlocks] = runs;
   g0_.assign(size_t{n} * 3, 0);
   gu_.assign(size_t{n} * 3, 0);
   gv_.assign(size_t{n} * 3, 0);
+  for (std::vector<int32_t>& v : view_) v.assign(size_t{n} * 4, 0);
   return Status::Ok();
 }
 
-void HierarchySolveQ32::Pull(uint32_t begin, uint32_t end, int64_t* b) const {
+int32_t HierarchySolveQ32::ToView(int64_t b_q32) const {
+  const int64_t v = RoundShiftSat64(b_q32, -kViewShift);
+  return static_cast<int32_t>(v > view_limit_ ? view_limit_ : (v < -view_limit_ ? -view_limit_ : v));
+}
+
+void HierarchySolveQ32::Pull(uint32_t begin, uint32_t end, int64_t* b, int32_t* view) const {
   const BakeHierarchy& h = *h_;
   for (uint32_t k = end; k-- > begin;) {  // children come after their parents
     if (h.leaf(k)) continue;
@@ -86,85 +180,127 @@ void HierarchySolveQ32::Pull(uint32_t begin, uint32_t end, int64_t* b) const {
     const uint32_t first = h.node_first_child[k];
     for (uint32_t c = first; c < first + h.node_child_count[k]; ++c)
       for (int ch = 0; ch < 3; ++ch) sum[ch] += static_cast<Int128>(child_weight_q32_[c]) * b[3 * size_t{c} + ch];
-    for (int ch = 0; ch < 3; ++ch) b[3 * size_t{k} + ch] = RoundShiftSat64(sum[ch], -32);
+    for (int ch = 0; ch < 3; ++ch) {
+      b[3 * size_t{k} + ch] = RoundShiftSat64(sum[ch], -32);
+      view[4 * size_t{k} + ch] = ToView(b[3 * size_t{k} + ch]);
+    }
   }
 }
 
-int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, int64_t* b) {
+void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
   const BakeHierarchy& h = *h_;
-  const uint32_t n = h.node_count();
-  for (uint32_t k = 0; k < n; ++k)
-    for (int ch = 0; ch < 3; ++ch) b[3 * size_t{k} + ch] = h.leaf(k) ? emitted_q32[k] : 0;
+  int32_t* view = view_[block].data();
+  int64_t* b = sweep->b;
+  int64_t change = 0, peak = 0;
+  for (uint32_t r = block_run_[block]; r < block_run_[block + 1]; ++r) {
+    const uint32_t begin = run_begin_[r], end = run_begin_[r + 1];
+    for (uint32_t k = begin; k < end; ++k) {  // gather
+      const EmitterGatherEntry* e = &gather_[gather_offsets_[k]];
+      const uint32_t count = gather_offsets_[k + 1] - gather_offsets_[k];
+      int64_t* g0 = &g0_[3 * size_t{k}];
+      int64_t* gu = &gu_[3 * size_t{k}];
+      int64_t* gv = &gv_[3 * size_t{k}];
+      int64_t a[3], u[3], v[3];
+      if (h.leaf(k)) {  // a leaf's links carry no gradient
+        if (vector_) {
+          GatherLeafAvx2(e, count, view, a);
+        } else {
+          GatherLeaf(e, count, view, a);
+        }
+        for (int ch = 0; ch < 3; ++ch) {
+          g0[ch] = RoundShiftSat64(a[ch], -kGatherFracBits);
+          gu[ch] = gv[ch] = 0;
+        }
+        continue;
+      }
+      const int32_t* g = &gradient_[2 * size_t{gradient_offsets_[k]}];
+      if (vector_) {
+        GatherInnerAvx2(e, g, count, view, a, u, v);
+      } else {
+        GatherInner(e, g, count, view, a, u, v);
+      }
+      constexpr int kGradientShift = kBakeGradientFracBits + kGatherFracBits - kExitanceFracBits;
+      for (int ch = 0; ch < 3; ++ch) {
+        gu[ch] = RoundShiftSat64(u[ch], -kGradientShift);
+        gv[ch] = RoundShiftSat64(v[ch], -kGradientShift);
+        // About the surface's origin, so a child adds it as it is.
+        g0[ch] = SubSat64(RoundShiftSat64(a[ch], -kGatherFracBits),
+                          GradientTerm(gu[ch], gv[ch], &centre_uv_q16_[2 * size_t{k}]));
+      }
+    }
+    for (uint32_t k = begin + 1; k < end; ++k) {  // push
+      const size_t parent = 3 * size_t{h.node_parent[k]};
+      for (int ch = 0; ch < 3; ++ch) {
+        g0_[3 * size_t{k} + ch] = AddSat64(g0_[3 * size_t{k} + ch], g0_[parent + ch]);
+        gu_[3 * size_t{k} + ch] = AddSat64(gu_[3 * size_t{k} + ch], gu_[parent + ch]);
+        gv_[3 * size_t{k} + ch] = AddSat64(gv_[3 * size_t{k} + ch], gv_[parent + ch]);
+      }
+    }
+    const int64_t* extra = sweep->extra;
+    for (uint32_t k = begin; k < end; ++k) {
+      if (!h.leaf(k)) continue;
+      for (int ch = 0; ch < 3; ++ch) {
+        const size_t i = 3 * size_t{k} + ch;
+        // Saturating: a bake whose links pass validation cannot make these
+        // overflow, but a runaway solve must not reach signed overflow either.
+        int64_t e = AddSat64(g0_[i], GradientTerm(gu_[i], gv_[i], &centre_uv_q16_[2 * size_t{k}]));
+        if (extra != nullptr) e = AddSat64(e, extra[i]);
+        const int64_t updated =
+            AddSat64(sweep->emitted[k], RoundShiftSat64(static_cast<Int128>(rho_q32_[i]) * e, -32));
+        const int64_t d = SaturateI64(updated > b[i] ? Int128{updated} - b[i] : Int128{b[i]} - updated);
+        if (d > change) change = d;
+        if (updated > peak) peak = updated;
+        b[i] = updated;
+        view[4 * size_t{k} + ch] = ToView(updated);
+      }
+    }
+    Pull(begin, end, b, view);
+  }
+  sweep->change[block] = change;
+  sweep->peak[block] = peak;
+}
+
+int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra_irradiance_q32,
+                                int64_t* b, WorkerPool* pool) {
+  const uint32_t n = node_count();
   const size_t runs = run_begin_.size() - 1;
-  for (size_t r = 0; r < runs; ++r) Pull(run_begin_[r], run_begin_[r + 1], b);
+  for (size_t r = 0; r < runs; ++r) Pull(run_begin_[r], run_begin_[r + 1], b, view_[0].data());
+  for (uint32_t k = 0; k < n; ++k)
+    for (int c = 0; c < 3; ++c) view_[0][4 * size_t{k} + c] = ToView(b[3 * size_t{k} + c]);
+  for (int k = 1; k < kEmitterSolveBlocks; ++k)
+    std::memcpy(view_[k].data(), view_[0].data(), size_t{n} * 4 * sizeof(int32_t));
+  Sweep sweep{this, emitted_q32, extra_irradiance_q32, b, {}, {}};
+  const auto task = [](void* context, int thread) {
+    Sweep* s = static_cast<Sweep*>(context);
+    for (int block = thread; block < kEmitterSolveBlocks; block += s->self->threads_)
+      s->self->SweepBlock(s, block);
+  };
+  threads_ = pool != nullptr ? pool->threads() : 1;
   int64_t previous = 0;
-  int sweep = 0;
-  while (sweep < kEmitterSolveMaxSweeps) {
-    ++sweep;
+  int sweep_count = 0;
+  while (sweep_count < kEmitterSolveMaxSweeps) {
+    ++sweep_count;
+    if (threads_ > 1) {
+      pool->Run(task, &sweep);
+    } else {
+      task(&sweep, 0);
+    }
+    // Every block's nodes into every other block's view, for the next sweep.
+    for (int from = 0; from < kEmitterSolveBlocks; ++from) {
+      const size_t lo = 4 * size_t{run_begin_[block_run_[from]]};
+      const size_t hi = 4 * size_t{run_begin_[block_run_[from + 1]]};
+      for (int to = 0; to < kEmitterSolveBlocks; ++to)
+        if (to != from) std::memcpy(&view_[to][lo], &view_[from][lo], (hi - lo) * sizeof(int32_t));
+    }
     int64_t change = 0, peak = 0;
-    for (size_t r = 0; r < runs; ++r) {
-      const uint32_t begin = run_begin_[r], end = run_begin_[r + 1];
-      for (uint32_t k = begin; k < end; ++k) {  // gather
-        const uint32_t e0 = gather_offsets_[k], e1 = gather_offsets_[k + 1];
-        int64_t* g0 = &g0_[3 * size_t{k}];
-        int64_t* gu = &gu_[3 * size_t{k}];
-        int64_t* gv = &gv_[3 * size_t{k}];
-        // Two passes over the node's links keep each pass's sums in registers.
-        Int128 a0 = 0, a1 = 0, a2 = 0;
-        for (uint32_t e = e0; e < e1; ++e) {
-          const int64_t* src = &b[3 * size_t{gather_source_[e]}];
-          const Int128 f = gather_f_[e];
-          a0 += f * src[0];
-          a1 += f * src[1];
-          a2 += f * src[2];
-        }
-        g0[0] = RoundShiftSat64(a0, -32);
-        g0[1] = RoundShiftSat64(a1, -32);
-        g0[2] = RoundShiftSat64(a2, -32);
-        gu[0] = gu[1] = gu[2] = gv[0] = gv[1] = gv[2] = 0;
-        if (h.leaf(k)) continue;  // a leaf's links carry no gradient
-        for (int ch = 0; ch < 3; ++ch) {
-          Int128 du = 0, dv = 0;
-          for (uint32_t e = e0; e < e1; ++e) {
-            const int64_t src = b[3 * size_t{gather_source_[e]} + ch];
-            du += static_cast<Int128>(gather_g_[2 * size_t{e}]) * src;
-            dv += static_cast<Int128>(gather_g_[2 * size_t{e} + 1]) * src;
-          }
-          gu[ch] = RoundShiftSat64(du, -kBakeGradientFracBits);
-          gv[ch] = RoundShiftSat64(dv, -kBakeGradientFracBits);
-          // About the surface's origin, so a child adds it as it is.
-          g0[ch] = SubSat64(g0[ch], GradientTerm(gu[ch], gv[ch], &centre_uv_q16_[2 * size_t{k}]));
-        }
-      }
-      for (uint32_t k = begin + 1; k < end; ++k) {  // push
-        const size_t parent = 3 * size_t{h.node_parent[k]};
-        for (int ch = 0; ch < 3; ++ch) {
-          g0_[3 * size_t{k} + ch] = AddSat64(g0_[3 * size_t{k} + ch], g0_[parent + ch]);
-          gu_[3 * size_t{k} + ch] = AddSat64(gu_[3 * size_t{k} + ch], gu_[parent + ch]);
-          gv_[3 * size_t{k} + ch] = AddSat64(gv_[3 * size_t{k} + ch], gv_[parent + ch]);
-        }
-      }
-      for (uint32_t k = begin; k < end; ++k) {
-        if (!h.leaf(k)) continue;
-        for (int ch = 0; ch < 3; ++ch) {
-          const size_t i = 3 * size_t{k} + ch;
-          // Saturating: a bake whose links pass validation cannot make these
-          // overflow, but a runaway solve must not reach signed overflow either.
-          const int64_t e = AddSat64(g0_[i], GradientTerm(gu_[i], gv_[i], &centre_uv_q16_[2 * size_t{k}]));
-          const int64_t updated =
-              AddSat64(emitted_q32[k], RoundShiftSat64(static_cast<Int128>(rho_q32_[i]) * e, -32));
-          const int64_t d = SaturateI64(updated > b[i] ? Int128{updated} - b[i] : Int128{b[i]} - updated);
-          if (d > change) change = d;
-          if (updated > peak) peak = updated;
-          b[i] = updated;
-        }
-      }
-      Pull(begin, end, b);
+    for (int k = 0; k < kEmitterSolveBlocks; ++k) {
+      if (sweep.change[k] > change) change = sweep.change[k];
+      if (sweep.peak[k] > peak) peak = sweep.peak[k];
     }
     if (change == 0) break;
     // change >= 2^55 would overflow the 128-bit test below; such a solve is
     // far from converged anyway.
-    if (sweep >= 2 && change < previous && change < (int64_t{1} << 55)) {
+    if (sweep_count >= 2 && change < previous && change < (int64_t{1} << 55)) {
       // Remaining ~ change r / (1 - r), r = change / previous, capped at 0.99.
       const Int128 lhs = static_cast<Int128>(change) << kEmitterSolveToleranceLog2;
       const bool capped = Int128{change} * 100 >= Int128{previous} * 99;
@@ -174,7 +310,7 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, int64_t* b) {
     }
     previous = change;
   }
-  return sweep;
+  return sweep_count;
 }
 
 }  // namespace relight

@@ -1,44 +1,57 @@
 // Leaves to vertices (surface_emitter_vertices.h).
 //
-// Scaling and overflow: leaf areas Q32.32 (< 2^64) x values Q32 (< 2^40)
-// summed over a vertex's few leaves in Int128 (< 2^108); divided by the
-// area sum gives Q32, shifted to Q24 and saturated.
+// Scaling and overflow: weights UQ0.32 summing to <= 2^32 per vertex (each
+// rounded down), times values Q24 (int32), summed in int64: the sum lies in
+// [-2^63, 2^63 - 2^32], which int64 holds. It is Q56, rounded to Q24. Areas at open: Q32.32 (< 2^64), summed per
+// vertex in UInt128, the quotient area << 32 / sum < 2^32 + 1.
 #include "surface_emitter_vertices.h"
 
+#include "relight/base/fixed.h"
 #include "relight/base/fixed_ops.h"
 
 namespace relight {
 
-void VertexLeafAreas(const BakeHierarchy& h, uint32_t vertex_count, UInt128* vertex_area) {
-  for (uint32_t v = 0; v < vertex_count; ++v) vertex_area[v] = 0;
+void MakeVertexLeafWeights(const BakeHierarchy& h, uint32_t vertex_count, VertexLeafWeights* w) {
+  std::vector<UInt128> area(vertex_count, 0);
+  w->offsets.assign(size_t{vertex_count} + 1, 0);
   for (uint32_t k = 0; k < h.node_count(); ++k) {
     if (!h.leaf(k)) continue;
-    for (int c = 0; c < h.node_corner_count[k]; ++c)
-      vertex_area[h.node_corners[size_t{k} * kBakeMaxNodeCorners + static_cast<size_t>(c)]] +=
-          h.node_area[k];
+    for (int c = 0; c < h.node_corner_count[k]; ++c) {
+      const uint32_t v = h.node_corners[size_t{k} * kBakeMaxNodeCorners + static_cast<size_t>(c)];
+      area[v] += h.node_area[k];
+      ++w->offsets[v + 1];
+    }
+  }
+  for (uint32_t v = 0; v < vertex_count; ++v) w->offsets[v + 1] += w->offsets[v];
+  w->leaf.assign(w->offsets[vertex_count], 0);
+  w->weight_q32.assign(w->offsets[vertex_count], 0);
+  std::vector<uint32_t> fill(w->offsets.begin(), w->offsets.end() - 1);
+  for (uint32_t k = 0; k < h.node_count(); ++k) {
+    if (!h.leaf(k)) continue;
+    for (int c = 0; c < h.node_corner_count[k]; ++c) {
+      const uint32_t v = h.node_corners[size_t{k} * kBakeMaxNodeCorners + static_cast<size_t>(c)];
+      const uint32_t i = fill[v]++;
+      w->leaf[i] = k;
+      const UInt128 q = (static_cast<UInt128>(h.node_area[k]) << 32) / area[v];  // <= 2^32
+      w->weight_q32[i] = q > UINT32_MAX ? UINT32_MAX : static_cast<uint32_t>(q);
+    }
   }
 }
 
-void LeavesToVerticesQ24(const BakeHierarchy& h, const UInt128* vertex_area, uint32_t vertex_count,
-                         const int64_t* node_q32, Int128* sum, int32_t* out) {
-  for (size_t i = 0; i < size_t{vertex_count} * 3; ++i) sum[i] = 0;
-  for (uint32_t k = 0; k < h.node_count(); ++k) {
-    if (!h.leaf(k)) continue;
-    Int128 weighted[3];
-    for (int c = 0; c < 3; ++c) weighted[c] = static_cast<Int128>(h.node_area[k]) * node_q32[3 * size_t{k} + c];
-    for (int j = 0; j < h.node_corner_count[k]; ++j) {
-      const size_t v = h.node_corners[size_t{k} * kBakeMaxNodeCorners + static_cast<size_t>(j)];
-      for (int c = 0; c < 3; ++c) sum[3 * v + c] += weighted[c];
+void LeavesToVerticesQ24(const VertexLeafWeights& w, uint32_t vertex_count, const int32_t* node_q24,
+                         int32_t* out) {
+  for (uint32_t v = 0; v < vertex_count; ++v) {
+    int64_t s0 = 0, s1 = 0, s2 = 0;
+    for (uint32_t i = w.offsets[v]; i < w.offsets[v + 1]; ++i) {
+      const int64_t weight = w.weight_q32[i];
+      const int32_t* x = &node_q24[4 * size_t{w.leaf[i]}];
+      s0 += weight * x[0];
+      s1 += weight * x[1];
+      s2 += weight * x[2];
     }
-  }
-  for (size_t i = 0; i < size_t{vertex_count} * 3; ++i) {
-    int32_t value = 0;
-    if (vertex_area[i / 3] != 0) {
-      const Int128 area = static_cast<Int128>(vertex_area[i / 3]);
-      const Int128 half = sum[i] >= 0 ? area / 2 : -(area / 2);
-      value = SaturateI32(RoundShiftSat64((sum[i] + half) / area, -8));
-    }
-    out[i] = value;
+    out[3 * size_t{v}] = SaturateI32(RoundShiftSat64(s0, -32));
+    out[3 * size_t{v} + 1] = SaturateI32(RoundShiftSat64(s1, -32));
+    out[3 * size_t{v} + 2] = SaturateI32(RoundShiftSat64(s2, -32));
   }
 }
 

@@ -1,23 +1,30 @@
 // Leaf values to vertex values the way the baker forms its vertex basis
 // (baker_core AverageToVertices): each vertex takes the area-weighted mean of
-// the leaves (patches) it is a corner of. Integer-only; thread-safe.
+// the leaves (patches) it is a corner of. The weights (leaf area over the
+// vertex's leaves' area) are computed once at open, so the per-solve pass is
+// a few multiply-adds per vertex and no division. Thread-safe.
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "relight/bake/bake.h"
-#include "relight/base/fixed.h"
 
 namespace relight {
 
-// Sum of the areas (Q32.32 m^2) of the leaves around each vertex; 0 for a
-// vertex of no leaf. vertex_area has mesh.vertex_count() entries.
-void VertexLeafAreas(const BakeHierarchy& h, uint32_t vertex_count, UInt128* vertex_area);
+// Vertex v averages leaves leaf[i] with weight_q32[i] (UQ0.32, rounded down
+// so a vertex's weights sum to at most 1), i in [offsets[v], offsets[v + 1]).
+struct VertexLeafWeights {
+  std::vector<uint32_t> offsets, leaf, weight_q32;
+};
 
-// out[3 v + c] = mean over v's leaves k of node_q32[3 k + c] (Q32), as Q24
-// (saturated to int32), every channel c. sum is caller scratch of
-// 3 x vertex_count entries.
-void LeavesToVerticesQ24(const BakeHierarchy& h, const UInt128* vertex_area, uint32_t vertex_count,
-                         const int64_t* node_q32, Int128* sum, int32_t* out);
+// Open time (allocates). A vertex of no leaf gets no entries (value 0).
+void MakeVertexLeafWeights(const BakeHierarchy& h, uint32_t vertex_count, VertexLeafWeights* w);
+
+// out[3 v + c] = sum of weight x node_q24[4 leaf + c] (Q24 in, 4 per node as
+// the solver keeps them; Q24 out).
+// Integer-only, allocation-free.
+void LeavesToVerticesQ24(const VertexLeafWeights& w, uint32_t vertex_count, const int32_t* node_q24,
+                         int32_t* out);
 
 }  // namespace relight

@@ -7,9 +7,9 @@
 
 #include <utility>
 
+#include "relight/base/fixed.h"
 #include "relight/base/fixed_ops.h"
 #include "surface_emitter_coverage.h"
-#include "surface_emitter_vertices.h"
 
 namespace relight {
 namespace {
@@ -35,14 +35,14 @@ Status SurfaceEmitters::Open(const Bake& bake) {
     if (h.node_parent[k] == kBakeNoIndex && h.node_surface[k] < surface_root_.size())
       surface_root_[h.node_surface[k]] = k;
   }
-  vertex_area_.assign(vertex_count_, 0);
-  VertexLeafAreas(h, vertex_count_, vertex_area_.data());
-  vertex_sum_.assign(size_t{vertex_count_} * 3, 0);
+  MakeVertexLeafWeights(h, vertex_count_, &vertex_weights_);
   coverage_scratch_.assign(h.node_count(), 0);
-  exitance_.assign(size_t{h.node_count()} * 3, 0);
   for (Slot& s : slots_) {
-    s.coverage_q32.assign(h.node_count(), 0);
-    s.unit_q24.assign(size_t{vertex_count_} * 3, 0);
+    for (Solution* x : {&s.now, &s.before}) {
+      x->coverage_q32.assign(h.node_count(), 0);
+      x->exitance_q32.assign(size_t{h.node_count()} * 3, 0);
+      x->unit_q24.assign(size_t{vertex_count_} * 3, 0);
+    }
   }
   return Status::Ok();
 }
@@ -73,9 +73,16 @@ Status SurfaceEmitters::Place(int slot, const SurfaceEmitterShape& shape) {
     return Status(st.code(), StrFormat("%s (surface '%s')", st.message().c_str(), shape.surface.c_str()));
   }
   Slot& s = slots_[slot];
-  s.coverage_q32.swap(coverage_scratch_);
+  s.moved = s.placed;
   s.placed = true;
-  s.dirty = true;
+  if (coverage_scratch_ == s.now.coverage_q32) return Status::Ok();  // where it is (or was)
+  if (s.before.solved && coverage_scratch_ == s.before.coverage_q32) {
+    std::swap(s.now, s.before);  // back where it came from: the stored bits
+    return Status::Ok();
+  }
+  if (s.now.solved) std::swap(s.now, s.before);  // keep the last solved one to start from
+  s.now.coverage_q32.swap(coverage_scratch_);
+  s.now.solved = false;
   return Status::Ok();
 }
 
@@ -90,22 +97,57 @@ Status SurfaceEmitters::SetLuminance(int slot, const LightQ12 rgb[3]) {
 
 Status SurfaceEmitters::Remove(int slot) {
   RELIGHT_RETURN_IF_ERROR(CheckSlot(slot));
-  slots_[slot].placed = false;
-  slots_[slot].dirty = false;
+  slots_[slot].placed = false;  // its solution stays for a placement back there
   return Status::Ok();
 }
 
-int SurfaceEmitters::SolvePending() {
+// A move starts from the previous solution when its emitted flux is
+// within a factor 2 of the new one: the start's error is then the difference
+// of two similar indirect fields (a drag: mostly the near field), against
+// the whole indirect field from the emission alone. A new light (placed
+// where nothing was, or after a remove) starts from its emission.
+void SurfaceEmitters::StartFrom(const Slot& s, int64_t* b, bool* warm) const {
+  const BakeHierarchy& h = *bake_->hierarchy;
+  const uint32_t n = h.node_count();
+  const int64_t* now = s.now.coverage_q32.data();
+  const int64_t* before = s.before.coverage_q32.data();
+  Int128 flux_before = 0, flux_now = 0;  // covered area, Q64 m^2
+  for (uint32_t k = 0; k < n; ++k) {
+    if (!h.leaf(k)) continue;
+    const Int128 area = static_cast<Int128>(h.node_area[k]);
+    flux_before += area * before[k];
+    flux_now += area * now[k];
+  }
+  *warm = s.moved && s.before.solved && flux_before <= 2 * flux_now && flux_now <= 2 * flux_before;
+  if (*warm) {
+    // The previous solution with the new emission in place of the old, so
+    // the first sweep's change is light, not the step in emission (the
+    // stopping rule reads the sweeps' changes as a contraction).
+    for (uint32_t k = 0; k < n; ++k)
+      for (int c = 0; c < 3; ++c) {
+        const size_t i = 3 * size_t{k} + c;
+        b[i] = h.leaf(k) ? AddSat64(s.before.exitance_q32[i], now[k] - before[k]) : s.before.exitance_q32[i];
+      }
+    return;
+  }
+  for (uint32_t k = 0; k < n; ++k)  // the solver pulls the inner nodes up
+    for (int c = 0; c < 3; ++c) b[3 * size_t{k} + c] = h.leaf(k) ? now[k] : 0;
+}
+
+int SurfaceEmitters::SolvePending(WorkerPool* pool) {
   int solved = 0;
   last_sweeps_ = 0;
+  last_warm_ = 0;
   for (Slot& s : slots_) {
-    if (!s.placed || !s.dirty) continue;
-    last_sweeps_ += solver_.SolveRgb(s.coverage_q32.data(), exitance_.data());
+    if (!s.placed || s.now.solved) continue;
+    bool warm = false;
+    StartFrom(s, s.now.exitance_q32.data(), &warm);
+    last_warm_ += warm ? 1 : 0;
+    last_sweeps_ += solver_.SolveRgb(s.now.coverage_q32.data(), nullptr, s.now.exitance_q32.data(), pool);
     // Unit luminance L = 1 cd/m^2 emits M = pi L; the vertex luminance is
     // exitance / pi, so the pi cancels: the unit-coverage solve is the answer.
-    LeavesToVerticesQ24(*bake_->hierarchy, vertex_area_.data(), vertex_count_, exitance_.data(),
-                        vertex_sum_.data(), s.unit_q24.data());
-    s.dirty = false;
+    LeavesToVerticesQ24(vertex_weights_, vertex_count_, solver_.exitance_q24(), s.now.unit_q24.data());
+    s.now.solved = true;
     ++solved;
   }
   return solved;
@@ -113,11 +155,11 @@ int SurfaceEmitters::SolvePending() {
 
 void SurfaceEmitters::AddTo(int32_t* vertex_q12) const {
   for (const Slot& s : slots_) {
-    if (!s.placed || s.dirty) continue;
+    if (!s.placed || !s.now.solved) continue;
     if (s.luminance_q12[0] == 0 && s.luminance_q12[1] == 0 && s.luminance_q12[2] == 0) continue;
     const size_t n = size_t{vertex_count_} * 3;
     for (size_t i = 0; i < n; ++i) {
-      const int64_t add = (int64_t{s.unit_q24[i]} * s.luminance_q12[i % 3] + (int64_t{1} << 23)) >> 24;
+      const int64_t add = (int64_t{s.now.unit_q24[i]} * s.luminance_q12[i % 3] + (int64_t{1} << 23)) >> 24;
       vertex_q12[i] = SaturateI32(int64_t{vertex_q12[i]} + add);
     }
   }

@@ -1,0 +1,114 @@
+// relight-emitter-error: run-time emitters (the engine's FE solve on a
+// hierarchical bake) against Chandran & Srivastava's naive method (the scene
+// re-solved in float64 with the emitters as real emission: naive_emitter.h),
+// per vertex, luminaires off. Prints the error in % of the naive peak.
+//
+//   relight-emitter-error fixtures/chandran_room.toml --emitter
+//       "front_wall:2000:0.12,0,0.18;0.42,0,0.18;0.42,0,0.44;0.12,0,0.44"
+//   relight-emitter-error fixtures/living_room.toml --patch-size 0.092 --bake lr16k.rlb --emitter ...
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "baker_core.h"
+#include "emitter_args.h"
+#include "naive_emitter.h"
+#include "relight/bake/bake.h"
+#include "relight/baker/baker.h"
+#include "relight/baker/scene.h"
+#include "relight/engine/engine.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+int Fail(const std::string& message) {
+  std::fprintf(stderr, "relight-emitter-error: error: %s\n", message.c_str());
+  return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"run-time emitters (FE) against the naive float64 solve, per vertex"};
+  std::string scene_path, bake_path, naive_solver = "auto";
+  std::vector<std::string> emitters;
+  double patch_size_m = 0, naive_epsilon = 2.5e-4;
+  app.add_option("scene", scene_path, "scene TOML")->required();
+  app.add_option("--emitter", emitters, "SURFACE:L:x,y,z;... (L cd/m^2 or R,G,B), up to 8")->required();
+  app.add_option("--patch-size", patch_size_m, "patch edge length in metres, instead of the scene's");
+  app.add_option("--bake", bake_path, "a hierarchical bake of the same scene and patch size (else baked here)");
+  app.add_option("--naive-solver", naive_solver, "auto (dense up to 4000 patches), dense or hierarchical");
+  app.add_option("--naive-link-epsilon", naive_epsilon, "link epsilon of a hierarchical naive solve");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    relight::baker::Scene scene = relight::baker::LoadScene(scene_path);
+    if (patch_size_m > 0) scene.patch_size_m = patch_size_m;
+    relight::Engine engine;
+    if (!bake_path.empty()) {
+      if (relight::Status st = engine.Open(bake_path); !st.ok()) return Fail(st.ToString());
+    } else {
+      relight::baker::BakeOptions options;
+      options.solver = relight::baker::SolverKind::kHierarchical;
+      if (relight::Status st = engine.Open(relight::baker::Baker(scene, options).Bake()); !st.ok())
+        return Fail(st.ToString());
+    }
+    for (int i = 0; i < engine.luminaire_count(); ++i) (void)engine.SetDimmer(i, relight::Q1_15::FromRaw(0));
+    std::vector<relight::baker::NaiveEmitter> naive;
+    for (size_t i = 0; i < emitters.size(); ++i) {
+      relight::SurfaceEmitterShape shape;
+      relight::LightQ12 light[3];
+      std::string error;
+      if (!relight::cli::ParseEmitterArg(emitters[i], &shape, light, &error) ||
+          !relight::cli::ApplyEmitterText(engine, static_cast<int>(i), emitters[i], &error))
+        return Fail("--emitter '" + emitters[i] + "': " + error);
+      relight::baker::NaiveEmitter e;  // the same polygon and luminance as the engine got
+      e.surface = shape.surface;
+      for (int k = 0; k < shape.corner_count; ++k)
+        e.corners_m.push_back({shape.corners_q16[k][0] / 65536.0, shape.corners_q16[k][1] / 65536.0,
+                               shape.corners_q16[k][2] / 65536.0});
+      for (int c = 0; c < 3; ++c) e.luminance_cd_m2[c] = light[c].raw() / 4096.0;
+      naive.push_back(e);
+    }
+    const auto t0 = Clock::now();
+    engine.Update();
+    const double fe_ms = 1e3 * std::chrono::duration<double>(Clock::now() - t0).count();
+
+    relight::baker::BakeOptions options;
+    options.solver = naive_solver == "dense"          ? relight::baker::SolverKind::kDense
+                     : naive_solver == "hierarchical" ? relight::baker::SolverKind::kHierarchical
+                                                      : relight::baker::SolverKind::kAuto;
+    options.link_epsilon = naive_epsilon;
+    options.solve_tolerance = 1e-7;
+    const auto t1 = Clock::now();
+    const auto core = relight::baker::BuildBakerCore(scene, options, nullptr);
+    const Eigen::MatrixXd want = relight::baker::NaiveEmitterVertexLuminance(*core, naive);
+    const double naive_s = std::chrono::duration<double>(Clock::now() - t1).count();
+    if (static_cast<size_t>(want.rows()) != engine.bake().mesh.vertex_count())
+      return Fail("the bake has " + std::to_string(engine.bake().mesh.vertex_count()) + " vertices, the scene meshes to " +
+                  std::to_string(want.rows()) + ": not the same scene and patch size");
+    const int32_t* got = engine.vertex_luminance().raw();
+    std::printf("naive: %s solver, %zu patches, %.1f s; FE: %d sweeps, Update %.1f ms\n",
+                core->solver ? "dense" : "hierarchical", core->mesh.patch_count(), naive_s,
+                engine.last_update_emitter_sweeps(), fe_ms);
+    std::printf("channel | peak cd/m^2 | max error %% of peak | mean error %% of peak | vertices\n");
+    for (int c = 0; c < 3; ++c) {
+      const double peak = want.col(c).cwiseAbs().maxCoeff();
+      double max_e = 0, sum_e = 0;
+      for (Eigen::Index v = 0; v < want.rows(); ++v) {
+        const double e = std::abs(got[3 * v + c] / 4096.0 - want(v, c));
+        max_e = std::max(max_e, e);
+        sum_e += e;
+      }
+      std::printf("%d | %.3f | %.3f | %.4f | %lld\n", c, peak, 100 * max_e / peak,
+                  100 * sum_e / static_cast<double>(want.rows()) / peak, static_cast<long long>(want.rows()));
+    }
+  } catch (const std::exception& e) {
+    return Fail(e.what());
+  }
+  return 0;
+}
