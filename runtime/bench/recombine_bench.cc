@@ -11,7 +11,9 @@
 //                      uncompressed path's ratio beside it (issue 13)
 //   BM_DirectTerm      the aimed direct term of one head over V vertices
 //                      (direct_aimed.h), counter per_vertex (seconds); BM_DirectTermFull
-//                      the full path (direct.h: root and atan2 per vertex)
+//                      the full path (direct.h: root and atan2 per vertex);
+//                      BM_DirectTermBeam a spot's beam with a cut-off over
+//                      receivers in mesh order (most of them skipped)
 //
 // Report ratios within one run: Recombine / StreamRead at the same size, and
 // EngineDimmer / EngineMove. docs/performance.md has the figures and command.
@@ -390,7 +392,54 @@ void BM_DirectTermFull(benchmark::State& state) {
   SetPerVertex(state, n);
 }
 
+// The stage's case: receivers in raster order on the floor (neighbours in
+// the list are neighbours on the floor, as the mesher's are) under the
+// profile spot's beam (fixtures/stage.toml: beam 24, field 34 degrees, cut
+// to 0 at 1 % of the peak: docs/scene-format.md "beam"), so most receivers
+// are past the cut-off and skipped (direct_cull.h). per_vertex counts every
+// receiver, lit or not.
+void BM_DirectTermBeam(benchmark::State& state) {
+  const uint32_t n = static_cast<uint32_t>(state.range(0));
+  const uint32_t side = static_cast<uint32_t>(std::lround(std::sqrt(static_cast<double>(n))));
+  DirectScene scene(0);
+  std::vector<int16_t> direction;
+  std::vector<uint32_t> geometry;
+  for (uint32_t y = 0; y < side; ++y) {
+    for (uint32_t x = 0; x < side; ++x) {
+      const double d[3] = {-15.0 + 30.0 * x / (side - 1), -15.0 + 30.0 * y / (side - 1), -6.0};
+      const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      for (double c : d) direction.push_back(static_cast<int16_t>(std::lround(c / len * 16384)));
+      geometry.push_back(static_cast<uint32_t>(6.0 / (len * len * len) * 4e9));
+    }
+  }
+  const uint32_t count = side * side;
+  std::vector<uint16_t> albedo(static_cast<size_t>(count) * 3, 40000);
+  scene.rho.resize(albedo.size());
+  relight::ReflectanceOverPiQ32(albedo.data(), static_cast<uint32_t>(albedo.size()), scene.rho.data());
+  const double p = std::log(std::log2(10.0)) / std::log(34.0 / 24.0);
+  const double x_end = std::pow(std::log2(100.0), 1.0 / p);
+  scene.lid.clear();
+  for (int i = 0; i <= 180; ++i) {
+    const double x = i / 12.0;  // gamma / (beam / 2)
+    scene.lid.push_back(x > x_end ? 0 : static_cast<int64_t>(20000.0 * std::exp(-std::log(2.0) * std::pow(x, p)) * 65536));
+  }
+  const relight::DirectReceivers rx{direction.data(), geometry.data(), relight::QuantScale{1 << 29, -60}, count};
+  relight::PrepareDirectPoints(rx, &scene.points);
+  scene.out.assign(static_cast<size_t>(count) * 3, 0);
+  const relight::GammaTable& table = relight::SharedGammaTable();
+  int i = 0;
+  for (auto _ : state) {
+    int32_t axis[3];
+    AxisOf(i++, axis);
+    relight::DirectLightAimedQ12(scene.points, table, axis, scene.lid.data(), 180, scene.rho.data(),
+                                 relight::DirectStore::kAdd, scene.out.data());
+    benchmark::DoNotOptimize(scene.out.data());
+  }
+  SetPerVertex(state, count);
+}
+
 BENCHMARK(BM_DirectTerm)->Arg(16384)->Arg(100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DirectTermBeam)->Arg(16384)->Arg(100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_DirectTermFull)->Arg(16384)->Arg(100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_EngineMove)->Arg(16384)->Arg(100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_EngineDimmer)->Arg(16384)->Arg(100000)->Unit(benchmark::kMicrosecond);

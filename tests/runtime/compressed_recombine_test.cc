@@ -5,6 +5,7 @@
 // the float64 expansion of a compressed basis.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -14,6 +15,7 @@
 #include "compressed_recombine.h"
 #include "compressed_recombine_avx2.h"
 #include "recombine_avx2.h"
+#include "relight/base/fixed_ops.h"
 #include "relight/base/sh_index.h"
 
 namespace relight {
@@ -130,6 +132,40 @@ TEST(CompressedClusterTest, MultipliersRoundWithTheLargestShiftUpToInt32Extremes
   }
   EXPECT_EQ(m.shift[2], 31);
   EXPECT_EQ(m.k[2], 0);
+}
+
+// The shift ClusterMultipliersQ12 picks from bit lengths is the one the
+// definition's walk down from 31 finds (one 128-bit division a step here).
+TEST(CompressedClusterTest, ShiftIsTheLargestThatFitsExactly) {
+  std::mt19937_64 rng(23);
+  for (uint32_t r : {1u, 2u, 7u, 8u, 16u, 32u}) {
+    const int64_t limit = CompressedMultiplierLimit(r);
+    for (int trial = 0; trial < 3000; ++trial) {
+      const int bits = static_cast<int>(rng() % 32);
+      std::vector<int32_t> projection(3 * (r + 1));
+      for (int32_t& p : projection) {
+        p = static_cast<int32_t>(static_cast<int64_t>(rng() % (uint64_t{1} << bits)) * (rng() % 2 ? 1 : -1));
+      }
+      if (trial == 0) projection[3] = INT32_MIN;
+      ClusterMultipliers m{};
+      ClusterMultipliersQ12(projection.data(), r, &m);
+      for (int ch = 0; ch < 3; ++ch) {
+        Int128 largest = 0;
+        for (uint32_t j = 0; j < r; ++j) {
+          const Int128 p = projection[(1 + j) * 3 + ch];
+          largest = std::max(largest, p < 0 ? -p : p);
+        }
+        const auto scaled = [&](int s) {  // round(a 2^s / 16383), halves up
+          const Int128 num = s >= 0 ? largest << s : largest, den = s >= 0 ? Int128{kCompressedWeightOne}
+                                                                               : Int128{kCompressedWeightOne} << -s;
+          return (num + den / 2) / den;
+        };
+        int s = 31;
+        while (s > -31 && scaled(s) > limit) --s;
+        ASSERT_EQ(m.shift[ch], s) << "r " << r << " largest " << static_cast<int64_t>(largest);
+      }
+    }
+  }
 }
 
 TEST(CompressedRecombineTest, MatchesTheFloat64ExpansionOfTheCompressedBasis) {

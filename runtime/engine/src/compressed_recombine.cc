@@ -37,6 +37,21 @@ inline int32_t Finish(int32_t mean, int32_t acc, int s) {
   return v > INT32_MAX ? INT32_MAX : (v < INT32_MIN ? INT32_MIN : static_cast<int32_t>(v));
 }
 
+int BitLength(uint64_t v) { return v == 0 ? 0 : 64 - __builtin_clzll(v); }
+
+// The largest s in [-31, 31] with ScaledMagnitude(a, s) <= limit (-31 if
+// none), which is non-decreasing in s. Found from the bit lengths, then a
+// step or two down, not by walking from 31 with a division a step: any s
+// with a 2^s >= 2^14 (limit + 1) gives more than the limit, and
+// a >= 2^(bits(a) - 1), so the answer is at most 14 + bits(limit + 1) - bits(a).
+int LargestShift(int64_t a, int64_t limit) {
+  if (a == 0) return kMaxClusterShift;
+  int s = 14 + BitLength(static_cast<uint64_t>(limit) + 1) - BitLength(static_cast<uint64_t>(a));
+  s = s > kMaxClusterShift ? kMaxClusterShift : (s < kMinClusterShift ? kMinClusterShift : s);
+  while (s > kMinClusterShift && ScaledMagnitude(a, s) > limit) --s;
+  return s;
+}
+
 }  // namespace
 
 int32_t CompressedMultiplierLimit(uint32_t components) {
@@ -56,8 +71,7 @@ void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, Clust
       const int64_t a = p < 0 ? -p : p;
       if (a > largest) largest = a;
     }
-    int s = kMaxClusterShift;
-    while (s > kMinClusterShift && ScaledMagnitude(largest, s) > limit) --s;
+    const int s = LargestShift(largest, limit);
     m->shift[ch] = s;
     for (uint32_t j = 0; j < components; ++j) {
       const int64_t p = projection[(1 + j) * 3 + ch];

@@ -47,6 +47,7 @@ void PrepareDirectPoints(const DirectReceivers& rx, DirectPoints* out) {
     const int64_t g = RoundShiftSat64(static_cast<Int128>(rx.geometry[r]) * mantissa, s);
     p.geometry = g > 0xffffffffLL ? 0xffffffffu : static_cast<uint32_t>(g);
   }
+  PrepareDirectBlocks(out->points.data(), rx.count, SharedGammaTable(), &out->blocks);
 }
 
 int64_t LidIntensityFastQ16(const int64_t* candela_q16, int M, Bam gamma) {
@@ -68,6 +69,7 @@ namespace {
 // The kernel's per-call constants.
 struct AimedCall {
   int64_t a0, a1, a2;    // beam axis, Q1.30
+  int64_t zero_cos_q60;  // cos gamma <= it: the LID gives 0 (direct_cull.h)
   int intensity_shift;   // I_q16 >> it < 2^31 for every sample of this LID
   int64_t intensity_half;
   int e_shift;           // (I >> intensity_shift) x geometry >> e_shift = E_q12
@@ -78,6 +80,7 @@ struct AimedCall {
 inline uint64_t PointLuxQ12(const DirectPoint& pt, const AimedCall& k, const GammaTable& gt,
                             const int64_t* lid_q16, int lid_m) {
   const int64_t cos_q60 = pt.direction_q30[0] * k.a0 + pt.direction_q30[1] * k.a1 + pt.direction_q30[2] * k.a2;
+  if (cos_q60 <= k.zero_cos_q60) return 0;  // past the cut-off: I = 0
   const Bam gamma = GammaFromCosQ60(gt, cos_q60);
   const int64_t intensity_q16 = LidIntensityFastQ16(lid_q16, lid_m, gamma);
   // < 2^31 x 2^32: the product fits uint64.
@@ -93,13 +96,13 @@ inline uint64_t PointLuxQ12(const DirectPoint& pt, const AimedCall& k, const Gam
 }
 
 template <bool kLuminance, bool kAddTo>
-void AimedLoop(const DirectPoints& points, const AimedCall& k, const GammaTable& gt,
-               const int64_t* lid_q16, int lid_m, const uint32_t* rho_q32, int32_t* out) {
-  const uint32_t count = static_cast<uint32_t>(points.points.size());
-  const DirectPoint* p = points.points.data();
-  for (uint32_t r = 0; r < count; ++r) {
+void AimedRange(const DirectPoint* p, uint32_t first, uint32_t end, const AimedCall& k,
+                const GammaTable& gt, const int64_t* lid_q16, int lid_m, const uint32_t* rho_q32,
+                int32_t* out) {
+  for (uint32_t r = first; r < end; ++r) {
     const uint64_t e_q12 = p[r].geometry != 0 ? PointLuxQ12(p[r], k, gt, lid_q16, lid_m) : 0;
     int32_t* dst = out + static_cast<size_t>(r) * 3;
+    if (kAddTo && e_q12 == 0) continue;  // + 0 leaves dst as it is
     for (int c = 0; c < 3; ++c) {
       uint64_t v = e_q12;
       // Q.12 lux (< 2^33) x Q0.32 (< 2^31) < 2^64, rounded to Q12 cd/m^2.
@@ -111,6 +114,25 @@ void AimedLoop(const DirectPoints& points, const AimedCall& k, const GammaTable&
       }
       dst[c] = static_cast<int32_t>(value);
     }
+  }
+}
+
+template <bool kLuminance, bool kAddTo>
+void AimedLoop(const DirectPoints& points, const AimedCall& k, const GammaTable& gt,
+               const int64_t* lid_q16, int lid_m, uint64_t g_zero, const uint32_t* rho_q32,
+               int32_t* out) {
+  const uint32_t count = static_cast<uint32_t>(points.points.size());
+  const int32_t axis[3] = {static_cast<int32_t>(k.a0), static_cast<int32_t>(k.a1), static_cast<int32_t>(k.a2)};
+  for (size_t b = 0; b < points.blocks.size(); ++b) {
+    const uint32_t first = static_cast<uint32_t>(b) * kDirectBlockPoints;
+    const uint32_t end = count - first < kDirectBlockPoints ? count : first + kDirectBlockPoints;
+    if (BlockOutsideBeam(points.blocks[b], gt, axis, g_zero)) {
+      if (!kAddTo) {  // every receiver's value is 0
+        for (size_t i = static_cast<size_t>(first) * 3; i < static_cast<size_t>(end) * 3; ++i) out[i] = 0;
+      }
+      continue;
+    }
+    AimedRange<kLuminance, kAddTo>(points.points.data(), first, end, k, gt, lid_q16, lid_m, rho_q32, out);
   }
 }
 
@@ -135,16 +157,18 @@ void DirectLightAimedQ12(const DirectPoints& points, const GammaTable& gamma_tab
   k.e_shift = points.shift - k.intensity_shift;
   k.e_half = k.e_shift > 0 && k.e_shift <= 63 ? uint64_t{1} << (k.e_shift - 1) : 0;
   const GammaTable& gt = gamma_table;
+  const uint64_t g_zero = LidZeroFromBam(lid_q16, lid_m);
+  k.zero_cos_q60 = ZeroCosQ60(gt, g_zero);
   if (reflectance_over_pi_q32 != nullptr) {
     if (store == DirectStore::kAdd) {
-      AimedLoop<true, true>(points, k, gt, lid_q16, lid_m, reflectance_over_pi_q32, out);
+      AimedLoop<true, true>(points, k, gt, lid_q16, lid_m, g_zero, reflectance_over_pi_q32, out);
     } else {
-      AimedLoop<true, false>(points, k, gt, lid_q16, lid_m, reflectance_over_pi_q32, out);
+      AimedLoop<true, false>(points, k, gt, lid_q16, lid_m, g_zero, reflectance_over_pi_q32, out);
     }
   } else if (store == DirectStore::kAdd) {
-    AimedLoop<false, true>(points, k, gt, lid_q16, lid_m, nullptr, out);
+    AimedLoop<false, true>(points, k, gt, lid_q16, lid_m, g_zero, nullptr, out);
   } else {
-    AimedLoop<false, false>(points, k, gt, lid_q16, lid_m, nullptr, out);
+    AimedLoop<false, false>(points, k, gt, lid_q16, lid_m, g_zero, nullptr, out);
   }
 }
 

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "direct.h"
+#include "direct_cull.h"
 #include "gamma_table.h"
 #include "relight/bake/bake.h"
 
@@ -33,6 +34,7 @@ struct DirectPoint {
 struct DirectPoints {
   std::vector<DirectPoint> points;
   int shift = 0;  // E_q12 = I_q16 x geometry >> shift
+  std::vector<DirectBlock> blocks;  // cones of kDirectBlockPoints receivers (direct_cull.h)
 };
 
 // Sizes and fills `out` from the bake's receivers (Open time: allocates).
@@ -46,7 +48,8 @@ void PrepareDirectPoints(const DirectReceivers& receivers, DirectPoints* out);
 // (2^47), so (b - a) x fraction (< 2^63) needs no 128 bits.
 int64_t LidIntensityFastQ16(const int64_t* candela_q16, int M, Bam gamma);
 
-// As DirectLightQ12 (direct.h), from prepared points: LightQ12 luminance
+// As DirectLightQ12 (direct.h), from prepared points, skipping receivers
+// past the LID's cut-off (direct_cull.h: the same values, cheaper): LightQ12 luminance
 // (with reflectance_over_pi_q32) or lux (without), 3 per receiver.
 // Scaling and overflow:
 //   cos gamma   Q1.30 x Q1.30 dot product, Q2.60 in int64 (|.| < 2^62)

@@ -3,8 +3,10 @@
 
 #include <cstddef>
 
-#include "relight/base/status.h"
+#include "mix_avx2.h"
+#include "recombine_avx2.h"
 #include "relight/base/fixed_ops.h"
+#include "relight/base/status.h"
 
 namespace relight {
 
@@ -22,6 +24,7 @@ void MixLuminairesQ12(const MixSource* sources, uint32_t source_count, uint32_t 
   RELIGHT_CHECK(scratch_len >= 3);
   const uint32_t block = scratch_len / 3;
   constexpr int64_t kHalf = int64_t{1} << 29;
+  const bool avx2 = CpuHasAvx2();  // the same values (mix_avx2.h)
   for (uint32_t r0 = 0; r0 < receiver_count; r0 += block) {
     const uint32_t n = receiver_count - r0 < block ? receiver_count - r0 : block;
     const size_t base = static_cast<size_t>(r0) * 3;
@@ -32,6 +35,10 @@ void MixLuminairesQ12(const MixSource* sources, uint32_t source_count, uint32_t 
       if ((g[0] | g[1] | g[2]) == 0) continue;
       const int32_t* a = s.a + base;
       const int32_t* b = s.b != nullptr ? s.b + base : nullptr;
+      if (avx2 && b == nullptr) {  // a + b may pass int32: only a alone in vectors
+        MixAddAvx2(a, g, 3 * n, scratch);
+        continue;
+      }
       for (uint32_t i = 0; i < n; ++i) {
         for (int c = 0; c < 3; ++c) {
           const int64_t light = static_cast<int64_t>(a[3 * i + c]) + (b ? b[3 * i + c] : 0);
@@ -39,7 +46,11 @@ void MixLuminairesQ12(const MixSource* sources, uint32_t source_count, uint32_t 
         }
       }
     }
-    for (uint32_t i = 0; i < 3 * n; ++i) out[base + i] = SaturateI32(scratch[i]);
+    if (avx2) {
+      SaturateAvx2(scratch, 3 * n, out + base);
+    } else {
+      for (uint32_t i = 0; i < 3 * n; ++i) out[base + i] = SaturateI32(scratch[i]);
+    }
   }
 }
 
