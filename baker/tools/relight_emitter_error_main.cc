@@ -34,8 +34,8 @@ int Fail(const std::string& message) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"run-time emitters (FE) against the naive float64 solve, per vertex"};
-  std::string scene_path, bake_path, naive_solver = "auto";
+  CLI::App app{"run-time emitters (adaptive refine or fractional emissivity) against the naive float64 solve, per vertex"};
+  std::string scene_path, bake_path, naive_solver = "auto", method = "ar";
   std::vector<std::string> emitters;
   double patch_size_m = 0, naive_epsilon = 2.5e-4;
   app.add_option("scene", scene_path, "scene TOML")->required();
@@ -44,6 +44,8 @@ int main(int argc, char** argv) {
   app.add_option("--bake", bake_path, "a hierarchical bake of the same scene and patch size (else baked here)");
   app.add_option("--naive-solver", naive_solver, "auto (dense up to 4000 patches), dense or hierarchical");
   app.add_option("--naive-link-epsilon", naive_epsilon, "link epsilon of a hierarchical naive solve");
+  app.add_option("--method", method, "the engine's method: ar (adaptive refine, the engine's default) or fe (fractional emissivity)")
+      ->check(CLI::IsMember({"ar", "fe"}));
   CLI11_PARSE(app, argc, argv);
   try {
     relight::baker::Scene scene = relight::baker::LoadScene(scene_path);
@@ -63,9 +65,12 @@ int main(int argc, char** argv) {
       relight::SurfaceEmitterShape shape;
       relight::LightQ12 light[3];
       std::string error;
-      if (!relight::cli::ParseEmitterArg(emitters[i], &shape, light, &error) ||
-          !relight::cli::ApplyEmitterText(engine, static_cast<int>(i), emitters[i], &error))
+      if (!relight::cli::ParseEmitterArg(emitters[i], &shape, light, &error))
         return Fail("--emitter '" + emitters[i] + "': " + error);
+      shape.method = method == "fe" ? relight::SurfaceEmitterMethod::kFractionalEmissivity
+                                    : relight::SurfaceEmitterMethod::kAdaptiveRefine;
+      if (relight::Status st = engine.SetSurfaceEmitter(static_cast<int>(i), shape, light); !st.ok())
+        return Fail("--emitter '" + emitters[i] + "': " + st.ToString());
       relight::baker::NaiveEmitter e;  // the same polygon and luminance as the engine got
       e.surface = shape.surface;
       for (int k = 0; k < shape.corner_count; ++k)
@@ -92,8 +97,8 @@ int main(int argc, char** argv) {
       return Fail("the bake has " + std::to_string(engine.bake().mesh.vertex_count()) + " vertices, the scene meshes to " +
                   std::to_string(want.rows()) + ": not the same scene and patch size");
     const int32_t* got = engine.vertex_luminance().raw();
-    std::printf("naive: %s solver, %zu patches, %.1f s; FE: %d sweeps, Update %.1f ms\n",
-                core->solver ? "dense" : "hierarchical", core->mesh.patch_count(), naive_s,
+    std::printf("naive: %s solver, %zu patches, %.1f s; %s: %d sweeps, Update %.1f ms\n",
+                core->solver ? "dense" : "hierarchical", core->mesh.patch_count(), naive_s, method == "fe" ? "FE" : "AR",
                 engine.last_update_emitter_sweeps(), fe_ms);
     std::printf("channel | peak cd/m^2 | max error %% of peak | mean error %% of peak | vertices\n");
     for (int c = 0; c < 3; ++c) {
