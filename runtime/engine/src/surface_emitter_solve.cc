@@ -210,7 +210,7 @@ void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
   for (uint32_t r = block_run_[block]; r < block_run_[block + 1]; ++r) {
     const uint32_t begin = run_begin_[r], end = run_begin_[r + 1];
     for (uint32_t k = begin; k < end; ++k) {  // gather
-      const EmitterGatherEntry* e = &gather_[gather_offsets_[k]];
+      const EmitterGatherEntry* e = gather_.data() + gather_offsets_[k];  // data(): may be empty
       const uint32_t count = gather_offsets_[k + 1] - gather_offsets_[k];
       int64_t* g0 = &g0_[3 * size_t{k}];
       int64_t* gu = &gu_[3 * size_t{k}];
@@ -228,7 +228,7 @@ void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
         }
         continue;
       }
-      const int32_t* g = &gradient_[2 * size_t{gradient_offsets_[k]}];
+      const int32_t* g = gradient_.data() + 2 * size_t{gradient_offsets_[k]};  // empty when no inner node gathers
       if (vector_) {
         GatherInnerAvx2(e, g, count, view, a, u, v);
       } else {
