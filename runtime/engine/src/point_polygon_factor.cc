@@ -48,7 +48,8 @@ uint32_t PointToPolygonFactorQ32(const int64_t x_q16[3], const int32_t n_q30[3],
     if ((ha >= 0) != (hb >= 0)) {
       if (m > kMaxFactorPolygonCorners) return 0;
       // The crossing a + (b - a) t, t = ha / (ha - hb) in [0, 1] at Q.32.
-      const Int128 t = DivRound(ha < 0 ? -(ha << 32) : (ha << 32), ha < 0 ? hb - ha : ha - hb);
+      // |h_a| x 2^32 as a product: a left shift of a negative value is undefined.
+      const Int128 t = DivRound((ha < 0 ? -ha : ha) * (static_cast<Int128>(1) << 32), ha < 0 ? hb - ha : ha - hb);
       for (int i = 0; i < 3; ++i)
         r[m][i] = a[i] * (int64_t{1} << 16) + static_cast<int64_t>(RoundShift(static_cast<Int128>(b[i] - a[i]) * t, 16));
       ++m;
