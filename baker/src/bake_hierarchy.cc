@@ -6,17 +6,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "quantise.h"
+
 namespace relight::baker {
 namespace {
-
-constexpr double kTwo32 = 4294967296.0;
-
-// Form factors are in [0, 1]; 1.0 itself takes the largest code.
-uint32_t ToUq0_32(double f) {
-  if (!(f > 0)) return 0;
-  const double q = std::round(f * kTwo32);
-  return q >= kTwo32 ? std::numeric_limits<uint32_t>::max() : static_cast<uint32_t>(q);
-}
 
 int32_t ToGradient(double g, uint32_t p, uint32_t q) {
   const double v = std::round(std::ldexp(g, kBakeGradientFracBits));

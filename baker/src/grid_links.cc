@@ -7,20 +7,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "quantise.h"
 #include "relight/bake/bake_limits.h"
 
 namespace relight::baker {
-namespace {
-
-constexpr double kTwo32 = 4294967296.0;
-
-uint32_t ToUq0_32(double f) {
-  if (!(f > 0)) return 0;
-  const double q = std::round(f * kTwo32);
-  return q >= kTwo32 ? std::numeric_limits<uint32_t>::max() : static_cast<uint32_t>(q);
-}
-
-}  // namespace
 
 void MakeGridLinks(const Mesh& mesh, const Hierarchy& h, const std::vector<Eigen::MatrixXd>& gather,
                    double epsilon, BakeHierarchy* out) {

@@ -93,4 +93,11 @@ uint16_t ToAlbedo(double rho) {
   return RoundSaturate<uint16_t>(std::clamp(rho, 0.0, 1.0) * 65535.0, 0.0, 65535.0);
 }
 
+uint32_t ToUq0_32(double f) {
+  constexpr double kTwo32 = 4294967296.0;
+  if (!(f > 0)) return 0;
+  const double q = std::round(f * kTwo32);
+  return q >= kTwo32 ? std::numeric_limits<uint32_t>::max() : static_cast<uint32_t>(q);
+}
+
 }  // namespace relight::baker

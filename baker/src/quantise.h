@@ -31,5 +31,7 @@ Q1_15 ToLevelQ1_15(double v);   // dimmer, colour: clamped to [0, 1], 1.0 -> 327
 Q48_16 ToQ48_16(double v);      // candela
 LightQ12 ToLightQ12(double v);  // cd/m^2, lux
 uint16_t ToAlbedo(double rho);  // 65535 = 1.0, clamped to [0, 1]
+// Form factors, in [0, 1]: UQ0.32, 1.0 itself takes the largest code; <= 0 and NaN give 0.
+uint32_t ToUq0_32(double f);
 
 }  // namespace relight::baker
