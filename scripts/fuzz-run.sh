@@ -9,13 +9,27 @@
 # tests/fuzz/corpus/<target>/ as a regression case.
 #
 #   scripts/fuzz-run.sh [SECONDS_PER_TARGET] [TARGET...]   (default 30 s, all)
+#   scripts/fuzz-run.sh --campaign [TARGET...]
+#       issue 17's bar: each target until 10 million executions or an hour,
+#       whichever comes first, with an input slower than 1 s counted as a
+#       failure; results in out/fuzz-campaign/ (summary.txt: one line a target
+#       with executions, coverage and seconds), kept apart from CI's out/fuzz/.
 #
 # RELIGHT_JOBS=N builds on N cores and runs N targets at once (default: all cores).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$(pwd)
-SECONDS_EACH=${1:-30}
-shift || true
+RUNS=-1        # -runs=-1: no limit on executions, only on time
+TIMEOUT_S=10   # an input slower than this is a finding
+OUT_NAME=fuzz
+if [ "${1:-}" = "--campaign" ]; then
+  shift
+  RUNS=10000000 TIMEOUT_S=1 OUT_NAME=fuzz-campaign
+  SECONDS_EACH=3600
+else
+  SECONDS_EACH=${1:-30}
+  shift || true
+fi
 JOBS=${RELIGHT_JOBS:-$(nproc)}
 SUDO=""
 [ "$(id -u)" -eq 0 ] || SUDO="sudo"
@@ -39,8 +53,10 @@ cmake --build build-fuzz -j"$JOBS" --target fuzzers
 built=$(date +%s)
 echo "fuzz-run: built in $((built - start)) s; ${SECONDS_EACH} s per target, $JOBS at a time"
 
-OUT="$ROOT/out/fuzz"
-rm -rf "$OUT"
+OUT="$ROOT/out/$OUT_NAME"
+# CI's short runs start clean; a campaign keeps the other targets' results
+# (it is often run a few targets at a time) and its history.txt.
+[ "$OUT_NAME" = fuzz ] && rm -rf "$OUT"
 mkdir -p "$OUT"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
@@ -49,16 +65,18 @@ run_one() {  # name|binary|corpus dirs (colon-separated)|dictionary
   local name bin corpus dict
   IFS='|' read -r name bin corpus dict <<< "$1"
   local dir="$OUT/$name"
+  rm -rf "$dir"
   mkdir -p "$dir/new"
-  local args=(-max_total_time="$SECONDS_EACH" -timeout=10 -rss_limit_mb=2048 -max_len=65536
+  local args=(-max_total_time="$SECONDS_EACH" -runs="$RUNS" -timeout="$TIMEOUT_S" -rss_limit_mb=2048 -max_len=65536
               -print_final_stats=1 -artifact_prefix="$dir/")
   [ -n "$dict" ] && args+=(-dict="$dict")
   IFS=':' read -r -a seeds <<< "$corpus"
+  local t0=$SECONDS
   if "$bin" "${args[@]}" "$dir/new" "${seeds[@]}" > "$dir/log" 2>&1; then
     local execs cov
     execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$dir/log" | tail -1)
     cov=$(grep -o 'cov: [0-9]*' "$dir/log" | tail -1 | cut -d' ' -f2)
-    echo "fuzz-run: $name ok: ${execs:-?} executions, coverage ${cov:-?} edges"
+    echo "fuzz-run: $name ok: ${execs:-?} executions, coverage ${cov:-?} edges, $((SECONDS - t0)) s"
   else
     echo "fuzz-run: $name FAILED (log and input in $dir):"
     grep -E 'ERROR|SUMMARY|runtime error|Test unit written' "$dir/log" | head -8
@@ -66,7 +84,7 @@ run_one() {  # name|binary|corpus dirs (colon-separated)|dictionary
   fi
 }
 export -f run_one
-export OUT SECONDS_EACH
+export OUT SECONDS_EACH RUNS TIMEOUT_S
 
 list="$ROOT/build-fuzz/fuzzers.txt"
 if [ $# -gt 0 ]; then
@@ -76,6 +94,7 @@ if [ $# -gt 0 ]; then
 fi
 status=0
 grep -v '^$' "$list" | xargs -d '\n' -P "$JOBS" -I{} bash -c 'run_one "$1"' _ {} | tee "$OUT/summary.txt" || status=1
+sed "s/^/$(date -u +%FT%TZ) /" "$OUT/summary.txt" >> "$OUT/history.txt"
 passed=$(grep -c ' ok: ' "$OUT/summary.txt" || true)
 failed=$(grep -c ' FAILED ' "$OUT/summary.txt" || true)
 echo "fuzz-run: done in $(( $(date +%s) - start )) s"
