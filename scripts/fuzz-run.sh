@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Runs every libFuzzer target of tests/fuzz for a fixed time (issue 17,
 # docs/security.md "Fuzzing"). Installs clang and its runtime libraries if
-# missing, builds the `fuzz` preset (clang, ASan + UBSan + libFuzzer) into
-# build-fuzz/, then runs the targets two at a time from their checked-in
+# missing, builds the fuzz targets of the `asan` preset (clang, ASan + UBSan,
+# libFuzzer; the tree scripts/sanitize-test.sh tests) into build-asan/, then runs the targets two at a time from their checked-in
 # corpora. New inputs go to a scratch folder, never into the tree. A crash,
 # leak, timeout (> 10 s) or out-of-memory (> 2 GB) fails the run and leaves
 # the input in out/fuzz/<target>/: fix the bug, then add that file to
@@ -31,25 +31,15 @@ else
   shift || true
 fi
 JOBS=${RELIGHT_JOBS:-$(nproc)}
-SUDO=""
-[ "$(id -u)" -eq 0 ] || SUDO="sudo"
 start=$(date +%s)
 
-PACKAGES=(clang libclang-rt-dev)
-missing=()
-for p in "${PACKAGES[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "fuzz-run: installing ${missing[*]}"
-  $SUDO apt-get update -q
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
-fi
+source scripts/need-clang.sh
+need_clang
 
 LAUNCHER=()
 command -v ccache > /dev/null && LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
-cmake --preset fuzz "${LAUNCHER[@]}" > /dev/null
-cmake --build build-fuzz -j"$JOBS" --target fuzzers
+cmake --preset asan "${LAUNCHER[@]}" > /dev/null
+cmake --build build-asan -j"$JOBS" --target fuzzers
 built=$(date +%s)
 echo "fuzz-run: built in $((built - start)) s; ${SECONDS_EACH} s per target, $JOBS at a time"
 
@@ -86,7 +76,7 @@ run_one() {  # name|binary|corpus dirs (colon-separated)|dictionary
 export -f run_one
 export OUT SECONDS_EACH RUNS TIMEOUT_S
 
-list="$ROOT/build-fuzz/fuzzers.txt"
+list="$ROOT/build-asan/fuzzers.txt"
 if [ $# -gt 0 ]; then
   pattern=$(printf '^%s|\|' "$@")
   grep -e "${pattern%\\|}" "$list" > "$OUT/selected.txt"

@@ -1,16 +1,15 @@
 #!/usr/bin/env bash
 # The sanitizer build (issue 17, docs/security.md): configures the `asan`
-# preset (CMakePresets.json: ASan + UBSan, -fno-sanitize-recover=all) into
-# build-asan/, builds it and runs tests there with the suppressions in
-# tests/sanitizers/ (system libraries only, each with its reason).
+# preset (CMakePresets.json: clang, ASan + UBSan, -fno-sanitize-recover=all,
+# the fuzz targets as libFuzzer binaries) into build-asan/, builds it and runs
+# tests there with the suppressions in tests/sanitizers/ (system libraries
+# only, each with its reason). Installs clang if it is missing.
 #
-#   scripts/sanitize-test.sh             everything, the whole suite
-#   scripts/sanitize-test.sh --inputs    what CI runs: the readers of outside
-#                                        input that need no baker (bake file,
-#                                        patches, fixture types, replay, Modbus,
-#                                        DMX) and their fuzz corpora; the
-#                                        baker's readers run sanitized in
-#                                        scripts/fuzz-run.sh's clang build
+#   scripts/sanitize-test.sh             what CI runs: everything, the whole suite
+#   scripts/sanitize-test.sh --inputs    the readers of outside input that need
+#                                        no baker (bake file, patches, fixture
+#                                        types, replay, Modbus, DMX) and their
+#                                        fuzz corpora: a quick check
 #   scripts/sanitize-test.sh [--inputs] -R REGEX   ... only tests matching REGEX
 #
 # RELIGHT_JOBS=N builds and tests on N cores (default: all).
@@ -19,6 +18,8 @@ cd "$(dirname "$0")/.."
 ROOT=$(pwd)
 JOBS=${RELIGHT_JOBS:-$(nproc)}
 start=$(date +%s)
+source scripts/need-clang.sh
+need_clang
 
 # Test binaries (and fuzz corpus replays) of --inputs.
 INPUT_TARGETS=(bake_io_test replay_plan_test hal_core_test hal_replay_test hal_modbus_test hal_modbus_abuse_test hal_dmx_test

@@ -293,7 +293,9 @@ TEST_F(BakeIoTest, HostileCountsAndFieldsInPayloadsAreRejected) {
                                                         {8, "surface count"},
                                                         {12, "grid count"},
                                                         {16, "luminaire count"}};
-  for (const auto& [off, what] : meta_counts) {
+  for (const auto& count : meta_counts) {
+    const size_t off = count.first;  // a named copy: C++17 lambdas cannot capture a structured binding
+    const char* what = count.second;
     for (bool compress : {false, true}) {
       ExpectCorrupt(
           EditPayload(

@@ -183,7 +183,7 @@ TEST(CompressedRecombineTest, MatchesTheFloat64ExpansionOfTheCompressedBasis) {
   for (uint32_t i = 0; i < 3 * terms * vectors; ++i) cpca.vectors.push_back(static_cast<int16_t>(q16(rng)));
   for (uint32_t i = 0; i < receivers * r; ++i) cpca.weights.push_back(static_cast<int16_t>(wq(rng)));
   std::vector<int64_t> coef(static_cast<size_t>(terms));
-  for (int64_t& c : coef) c = int64_t{std::uniform_int_distribution<int>(-3000, 3000)(rng)} << 16;  // cd
+  for (int64_t& c : coef) c = int64_t{std::uniform_int_distribution<int>(-3000, 3000)(rng)} * 65536;  // cd, Q16
 
   std::vector<int32_t> k(3 * static_cast<size_t>(terms)), projection(CompressedProjectionValues(cpca));
   std::vector<int64_t> scratch(64);

@@ -97,9 +97,7 @@ void Apply(Engine* e, const Change& ch) {
   }
 }
 
-// The engine's outputs as int32 pointers, whether it hands out pointers or
-// views with raw() (main's LuminanceView / IlluminanceView).
-inline const int32_t* Raw(const int32_t* p) { return p; }
+// The engine's outputs (LuminanceView / IlluminanceView) as int32 pointers.
 template <typename View>
 const int32_t* Raw(const View& v) {
   return v.raw();

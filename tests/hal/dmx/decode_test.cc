@@ -49,7 +49,7 @@ TEST_F(DmxDecode, SixteenBitPanTiltAndDimmer) {
   ASSERT_TRUE(DecodeDmxFrame(p16_, 100, 0x00, frame_, 512, &v));
   EXPECT_EQ(v.pan16, 0xABCD);
   EXPECT_EQ(v.tilt16, 0x01FF);
-  EXPECT_NEAR(v.dimmer.raw(), std::lround(0x1234 / 65535.0 * 32767.0), 1);
+  EXPECT_NEAR(v.dimmer.raw(), std::round(0x1234 / 65535.0 * 32767.0), 1);
   frame_[99] = 255, frame_[100] = 255;
   ASSERT_TRUE(DecodeDmxFrame(p16_, 100, 0x00, frame_, 512, &v));
   EXPECT_EQ(v.dimmer.raw(), 32767);

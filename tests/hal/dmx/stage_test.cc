@@ -144,7 +144,8 @@ bool ParseShowLine(const std::string& line, ShowLine* out, std::string* why) {
   while (in >> run) {
     const size_t eq = run.find('=');
     if (eq == std::string::npos || eq == 0) return *why = "no slot= in '" + run + "'", false;
-    const long slot = std::strtol(run.substr(0, eq).c_str(), &end, 10);
+    const std::string slot_text = run.substr(0, eq);  // named: strtol's end points into it below
+    const long slot = std::strtol(slot_text.c_str(), &end, 10);
     const std::string hex = run.substr(eq + 1);
     if (*end != '\0' || slot < 1 || slot > kDmxSlots) return *why = "bad slot in '" + run + "'", false;
     if (hex.empty() || hex.size() % 2 != 0) return *why = "odd or empty hex in '" + run + "'", false;
