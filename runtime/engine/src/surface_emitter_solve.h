@@ -1,7 +1,9 @@
 // Hierarchical radiosity from the bake's stored quadtrees and links, in fixed
 // point, for run-time emitters: Gauss-Seidel sweeps over the surfaces exactly
 // as the baker's solver (baker/src/hierarchy_solve.h, docs/hierarchy.md):
-// per surface every node gathers sum (f + g.(x - c)) B over its links, the
+// per surface every node gathers sum (f + g.(x - c)) B over its links (with
+// the source's first moment of exitance where the source is an inner node,
+// f (B + (g_rev / f_rev) . m): "Bias and its fix"), the
 // irradiance is pushed down (a leaf takes the linear field at its centroid),
 // leaves take M = S + rho (E + extra), exitance is pulled up area-weighted.
 // The three channels (reflectance differs per channel) go through each sweep
@@ -25,6 +27,7 @@
 #include "relight/bake/bake.h"
 #include "relight/base/status.h"
 #include "surface_emitter_gather_avx2.h"
+#include "surface_emitter_moments.h"
 #include "worker_pool.h"
 
 namespace relight {
@@ -81,8 +84,11 @@ class HierarchySolveQ32 {
  private:
   struct Sweep;
   void SweepBlock(Sweep* sweep, int block);
-  void Pull(uint32_t begin, uint32_t end, int64_t* b, int32_t* view) const;
+  void Pull(uint32_t begin, uint32_t end, int64_t* b, int32_t* view, int32_t* moment);
+  void SetView(uint32_t k, const int64_t* b, int32_t* view, int32_t* moment) const;
   int32_t ToView(int64_t b_q32) const;
+  int32_t ToMomentView(int64_t m_q32) const;
+  void AddMoments(const EmitterMomentEntry* e, uint32_t count, const int32_t* moment, int64_t a[3]) const;
 
   const BakeHierarchy* h_ = nullptr;
   // Node k gathers from entries [gather_offsets_[k], gather_offsets_[k + 1]);
@@ -91,6 +97,7 @@ class HierarchySolveQ32 {
   std::vector<uint32_t> gather_offsets_, gradient_offsets_;
   std::vector<EmitterGatherEntry> gather_;
   std::vector<int32_t> gradient_;
+  EmitterMomentTable moments_;              // the source-moment terms of each node's gathers
   std::vector<uint64_t> child_weight_q32_;  // area over the parent's, 2^32 = all
   std::vector<int32_t> centre_uv_q16_;      // 2 per node, surface frame, m
   std::vector<uint64_t> rho_q32_;           // 3 per node (leaves), 2^32 = 1
@@ -100,8 +107,13 @@ class HierarchySolveQ32 {
   int threads_ = 1;                         // of the current SolveRgb
   int32_t view_limit_ = 0;                  // |exitance| read by a gather, Q24 (Init)
   std::vector<int64_t> g0_, gu_, gv_;       // gathered a + b u + c v, Q32, 3 per node
-  // Per block, every node's exitance as that block's gathers read it.
+  // First moment of exitance about the node's centre (Q32 x m, u and v, 3
+  // per node; 0 at a leaf), pulled up with the exitance.
+  std::vector<int64_t> mu_, mv_;
+  // Per block, every node's exitance as that block's gathers read it, and
+  // every inner node's moment (Q20 x m, 8 per inner node: u 0-2, 0, v 0-2, 0).
   std::vector<int32_t> view_[kEmitterSolveBlocks];
+  std::vector<int32_t> moment_view_[kEmitterSolveBlocks];
 };
 
 }  // namespace relight
