@@ -24,6 +24,7 @@
 #include "relight/base/fixed_ops.h"
 #include "surface_emitter_frame.h"
 #include "surface_emitter_gather_avx2.h"
+#include "surface_emitter_extrapolate.h"
 #include "surface_emitter_moments.h"
 
 namespace relight {
@@ -86,6 +87,7 @@ struct HierarchySolveQ32::Sweep {
   const int64_t* extra;
   int64_t* b;
   int64_t change[kEmitterSolveBlocks];
+  Int128 l1[kEmitterSolveBlocks][3];  // sum over the leaves of |change|, per channel
   int64_t peak[kEmitterSolveBlocks];
 };
 
@@ -177,6 +179,7 @@ Status HierarchySolveQ32::Init(const Bake& bake) {
   g0_.assign(size_t{n} * 3, 0);
   gu_.assign(size_t{n} * 3, 0);
   gv_.assign(size_t{n} * 3, 0);
+  delta_.assign(size_t{n} * 3, 0);
   mu_.assign(size_t{n} * 3, 0);
   mv_.assign(size_t{n} * 3, 0);
   for (std::vector<int32_t>& v : view_) v.assign(size_t{n} * 4, 0);
@@ -268,6 +271,7 @@ void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
   int32_t* moment = moment_view_[block].data();
   int64_t* b = sweep->b;
   int64_t change = 0, peak = 0;
+  Int128 l1[3] = {0, 0, 0};
   for (uint32_t r = block_run_[block]; r < block_run_[block + 1]; ++r) {
     const uint32_t begin = run_begin_[r], end = run_begin_[r + 1];
     for (uint32_t k = begin; k < end; ++k) {  // gather
@@ -327,8 +331,10 @@ void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
         if (extra != nullptr) e = AddSat64(e, extra[i]);
         const int64_t updated =
             AddSat64(sweep->emitted[k], RoundShiftSat64(static_cast<Int128>(rho_q32_[i]) * e, -32));
+        delta_[i] = SubSat64(updated, b[i]);
         const int64_t d = SaturateI64(updated > b[i] ? Int128{updated} - b[i] : Int128{b[i]} - updated);
         if (d > change) change = d;
+        l1[ch] += d;
         if (updated > peak) peak = updated;
         b[i] = updated;
         view[4 * size_t{k} + ch] = ToView(updated);
@@ -337,6 +343,7 @@ void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
     Pull(begin, end, b, view, moment);
   }
   sweep->change[block] = change;
+  for (int ch = 0; ch < 3; ++ch) sweep->l1[block][ch] = l1[ch];
   sweep->peak[block] = peak;
 }
 
@@ -352,7 +359,8 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra
     std::memcpy(view_[k].data(), view_[0].data(), size_t{n} * 4 * sizeof(int32_t));
     std::memcpy(moment_view_[k].data(), moment_view_[0].data(), moment_view_[0].size() * sizeof(int32_t));
   }
-  Sweep sweep{this, emitted_q32, extra_irradiance_q32, b, {}, {}};
+  Sweep sweep{this, emitted_q32, extra_irradiance_q32, b, {}, {}, {}};
+  Int128 l1_prev[3] = {0, 0, 0};
   const auto task = [](void* context, int thread) {
     Sweep* s = static_cast<Sweep*>(context);
     for (int block = thread; block < kEmitterSolveBlocks; block += s->self->threads_)
@@ -381,9 +389,11 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra
       }
     }
     int64_t change = 0, peak = peak_floor_q32;
+    Int128 l1[3] = {0, 0, 0};
     for (int k = 0; k < kEmitterSolveBlocks; ++k) {
       if (sweep.change[k] > change) change = sweep.change[k];
       if (sweep.peak[k] > peak) peak = sweep.peak[k];
+      for (int ch = 0; ch < 3; ++ch) l1[ch] += sweep.l1[k][ch];
     }
     if (change == 0) break;
     // change >= 2^55 would overflow the 128-bit test below; such a solve is
@@ -394,11 +404,31 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra
       const bool capped = Int128{change} * 100 >= Int128{previous} * 99;
       const bool done = capped ? lhs * 99 < peak
                                : lhs * change < static_cast<Int128>(peak) * (previous - change);
-      if (done) break;
+      if (done) {
+        Extrapolate(b, l1, l1_prev);
+        break;
+      }
     }
     previous = change;
+    for (int ch = 0; ch < 3; ++ch) l1_prev[ch] = l1[ch];
   }
   return sweep_count;
 }
+
+// The rest of the series, then the inner nodes and the view from the leaves
+// (surface_emitter_extrapolate.h).
+void HierarchySolveQ32::Extrapolate(int64_t* b, const Int128* l1, const Int128* l1_before) {
+  const BakeHierarchy& h = *h_;
+  const uint32_t n = node_count();
+  Int128 num[3], den[3];
+  ExtrapolationRatios(l1, l1_before, num, den);
+  if (num[0] == 0 && num[1] == 0 && num[2] == 0) return;
+  ExtrapolateLeaves(n, h.node_child_count.data(), delta_.data(), num, den, b);
+  for (size_t r = 0; r + 1 < run_begin_.size(); ++r)
+    Pull(run_begin_[r], run_begin_[r + 1], b, view_[0].data(), moment_view_[0].data());
+  for (uint32_t k = 0; k < n; ++k)
+    if (h.leaf(k)) SetView(k, b, view_[0].data(), moment_view_[0].data());
+}
+
 
 }  // namespace relight
