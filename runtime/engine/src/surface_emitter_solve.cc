@@ -265,6 +265,15 @@ void HierarchySolveQ32::AddEmitted(const int64_t* emitted_q32, int64_t* b) {
     Pull(run_begin_[r], run_begin_[r + 1], b, view, moment_view_[0].data());
 }
 
+void HierarchySolveQ32::ReflectedStart(const int64_t* e, int64_t* b) const {
+  const BakeHierarchy& h = *h_;
+  for (uint32_t k = 0; k < node_count(); ++k)
+    for (int ch = 0; ch < 3; ++ch) {
+      const size_t i = 3 * size_t{k} + ch;
+      b[i] = h.leaf(k) ? RoundShiftSat64(static_cast<Int128>(rho_q32_[i]) * e[i], -32) : 0;
+    }
+}
+
 void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
   const BakeHierarchy& h = *h_;
   int32_t* view = view_[block].data();

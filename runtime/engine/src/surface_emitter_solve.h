@@ -80,6 +80,11 @@ class HierarchySolveQ32 {
   // exitance_q24() follows. Adaptive refine solves without its emitter's
   // own exitance (its first shot stands for it) and adds it after.
   void AddEmitted(const int64_t* emitted_q32, int64_t* exitance_q32);
+  // exitance_q32 = rho x irradiance_q32 (3 per node) on the leaves, 0 on the
+  // inner nodes (SolveRgb pulls them up): a new light's first bounce when
+  // its first shot is known (adaptive refine), so the sweeps start one
+  // bounce ahead of zeros.
+  void ReflectedStart(const int64_t* irradiance_q32, int64_t* exitance_q32) const;
   // exitance_q32 as int32 Q24 (kGatherFracBits), 4 per node (channels 0-2
   // and a zero), as the last
   // SolveRgb left it: what LeavesToVertices reads.
