@@ -100,9 +100,13 @@ RELIGHT_TARGET_AVX512_VNNI void CompressedClusterAvx512VnniQ12(const int16_t* w,
     for (int ch = 0; ch < 3; ++ch) lo[ch] = hi[ch] = half[ch];
     for (uint32_t p = 0; p < pairs; ++p) {
       const uint32_t j = 2 * p;
-      const __m512i a = _mm512_maskz_loadu_epi16(lanes, w + size_t{j} * n + i0);
-      const __m512i b = j + 1 < components ? _mm512_maskz_loadu_epi16(lanes, w + size_t{j + 1} * n + i0)
-                                           : _mm512_setzero_si512();
+      // Plain loads but on the last step: AMD's prefetchers follow masked
+      // loads less well (recombine_vnni.cc).
+      const int16_t* wa = w + size_t{j} * n + i0;
+      const __m512i a = left >= 32 ? _mm512_loadu_si512(wa) : _mm512_maskz_loadu_epi16(lanes, wa);
+      const __m512i b = j + 1 >= components ? _mm512_setzero_si512()
+                        : left >= 32        ? _mm512_loadu_si512(wa + n)
+                                            : _mm512_maskz_loadu_epi16(lanes, wa + n);
       const __m512i ul = _mm512_unpacklo_epi16(a, b), uh = _mm512_unpackhi_epi16(a, b);
       for (int ch = 0; ch < 3; ++ch) {
         lo[ch] = _mm512_dpwssd_epi32(lo[ch], ul, k[ch][p]);
