@@ -23,20 +23,19 @@ using cpca_simd::PackPair;
 
 // Permute indices (vpermt2d: 0..15 the first source, 16..31 the second).
 struct Indices {
-  // unpack{lo,hi}_epi16 work per 128-bit lane L: lo lane 4L + t holds
-  // receiver 8L + t, hi lane 4L + t receiver 8L + 4 + t (t < 4). in_order[h]
-  // picks receivers 16h .. 16h + 15 from (lo, hi).
-  int32_t in_order[2][16];
   // R, G, B of 16 receivers in order -> output vector v (elements 16v ..
   // 16v + 15 of the 48, element g = receiver g / 3, channel g % 3): first
   // R and G (rg[v]), then B into that (b[v]).
   int32_t rg[3][16];
   int32_t b[3][16];
-  constexpr Indices() : in_order(), rg(), b() {
+  // vpermt2w: weights of components j (0..31) and j + 1 (32..63) paired per
+  // receiver, in receiver order: pairs[h] for receivers 16h .. 16h + 15.
+  int16_t pairs[2][32];
+  constexpr Indices() : rg(), b(), pairs() {
     for (int h = 0; h < 2; ++h) {
-      for (int i = 0; i < 16; ++i) {
-        const int q = 16 * h + i;
-        in_order[h][i] = (q % 8 < 4 ? 0 : 16) + 4 * (q / 8) + q % 4;
+      for (int q = 0; q < 16; ++q) {
+        pairs[h][2 * q] = static_cast<int16_t>(16 * h + q);
+        pairs[h][2 * q + 1] = static_cast<int16_t>(32 + 16 * h + q);
       }
     }
     for (int v = 0; v < 3; ++v) {
@@ -91,12 +90,12 @@ RELIGHT_TARGET_AVX512_VNNI void CompressedClusterAvx512VnniQ12(const int16_t* w,
     mean[ch] = _mm512_set1_epi32(m.mean[ch]);
     shift[ch] = _mm_cvtsi32_si128(s);
   }
-  const __m512i first_idx = Load(kIndices.in_order[0]), second_idx = Load(kIndices.in_order[1]);
+  const __m512i pair_first = _mm512_loadu_si512(kIndices.pairs[0]), pair_second = _mm512_loadu_si512(kIndices.pairs[1]);
   for (uint32_t i0 = 0; i0 < n; i0 += 32) {
     const uint32_t left = n - i0;
     // The last step reads only its receivers (masked lanes do not fault).
     const __mmask32 lanes = left >= 32 ? ~__mmask32{0} : static_cast<__mmask32>((1u << left) - 1);
-    __m512i lo[3], hi[3];  // from the rounding half: see the header
+    __m512i lo[3], hi[3];  // receivers i0 + 0..15, i0 + 16..31; from the rounding half (header)
     for (int ch = 0; ch < 3; ++ch) lo[ch] = hi[ch] = half[ch];
     for (uint32_t p = 0; p < pairs; ++p) {
       const uint32_t j = 2 * p;
@@ -107,7 +106,8 @@ RELIGHT_TARGET_AVX512_VNNI void CompressedClusterAvx512VnniQ12(const int16_t* w,
       const __m512i b = j + 1 >= components ? _mm512_setzero_si512()
                         : left >= 32        ? _mm512_loadu_si512(wa + n)
                                             : _mm512_maskz_loadu_epi16(lanes, wa + n);
-      const __m512i ul = _mm512_unpacklo_epi16(a, b), uh = _mm512_unpackhi_epi16(a, b);
+      const __m512i ul = _mm512_permutex2var_epi16(a, pair_first, b);
+      const __m512i uh = _mm512_permutex2var_epi16(a, pair_second, b);
       for (int ch = 0; ch < 3; ++ch) {
         lo[ch] = _mm512_dpwssd_epi32(lo[ch], ul, k[ch][p]);
         hi[ch] = _mm512_dpwssd_epi32(hi[ch], uh, k[ch][p]);
@@ -115,10 +115,8 @@ RELIGHT_TARGET_AVX512_VNNI void CompressedClusterAvx512VnniQ12(const int16_t* w,
     }
     __m512i first[3], second[3];  // receivers i0 + 0..15, i0 + 16..31
     for (int ch = 0; ch < 3; ++ch) {
-      const __m512i l = _mm512_add_epi32(mean[ch], _mm512_sra_epi32(lo[ch], shift[ch]));
-      const __m512i h = _mm512_add_epi32(mean[ch], _mm512_sra_epi32(hi[ch], shift[ch]));
-      first[ch] = _mm512_permutex2var_epi32(l, first_idx, h);
-      second[ch] = _mm512_permutex2var_epi32(l, second_idx, h);
+      first[ch] = _mm512_add_epi32(mean[ch], _mm512_sra_epi32(lo[ch], shift[ch]));
+      second[ch] = _mm512_add_epi32(mean[ch], _mm512_sra_epi32(hi[ch], shift[ch]));
     }
     StoreRgb(first, left < 16 ? left : 16, out + size_t{i0} * 3);
     if (left > 16) StoreRgb(second, left - 16 < 16 ? left - 16 : 16, out + size_t{i0} * 3 + 48);

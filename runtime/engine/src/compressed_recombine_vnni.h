@@ -19,10 +19,11 @@ namespace relight {
 // AVX-512 (F, BW, VL, VNNI), 32 receivers a step in 512-bit registers; the
 // last step (n % 32 receivers) with masked loads and stores, so it does
 // receivers [0, n), all of them. Shifts >= 0 only (the caller checks).
-// Per 32 receivers and component pair: two loads, two unpacks into int16
-// pairs, six vpdpwssd (two per channel); then per channel a shift and the
-// mean, and 18 two-source permutes put the lanes in receiver order and
-// interleave R, G, B.
+// Per 32 receivers and component pair: two loads, two vpermt2w into int16
+// pairs in receiver order, six vpdpwssd (two per channel); then per channel
+// a shift and the mean, and 12 vpermt2d interleave R, G, B. (In-lane
+// unpacks instead of vpermt2w need 6 more permutes a step to restore the
+// receiver order; no faster, measured: docs/performance.md.)
 void CompressedClusterAvx512VnniQ12(const int16_t* w, uint32_t n, uint32_t components,
                                     const ClusterMultipliers& m, int32_t* out);
 
