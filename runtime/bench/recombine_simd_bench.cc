@@ -12,6 +12,9 @@
 //   BM_RecombinePathsOverStream/receivers/terms
 //       RecombineQ12 per path against the read of its basis, as
 //       BM_RecombineOverStream (recombine_bench.cc) has it for the active path.
+//   BM_MixPaths/receivers/luminaires
+//       MixLuminairesQ12 (every luminaire's cache, a alone) per path
+//       (scalar, AVX2, AVX-512) against a read of the caches.
 //
 // Built into recombine_bench: --benchmark_filter=Paths selects these.
 #include <benchmark/benchmark.h>
@@ -22,6 +25,7 @@
 #include <vector>
 
 #include "compressed_recombine.h"
+#include "mix.h"
 #include "recombine.h"
 #include "recombine_bench_data.h"
 #include "recombine_dispatch.h"
@@ -158,5 +162,46 @@ BENCHMARK(BM_RecombinePathsOverStream)
     ->Args({100000, 81})
     ->Unit(benchmark::kMicrosecond)
     ->UseManualTime();
+
+void BM_MixPaths(benchmark::State& state) {
+  const uint32_t receivers = static_cast<uint32_t>(state.range(0));
+  const uint32_t luminaires = static_cast<uint32_t>(state.range(1));
+  std::vector<std::vector<int16_t>> caches;  // int32 light, held as int16 pairs for SumWordsSimd
+  std::vector<relight::MixSource> sources(luminaires);
+  for (uint32_t l = 0; l < luminaires; ++l) {
+    caches.push_back(relight_bench::MakeBasis(2, receivers * 3 / 2 + 1));
+    sources[l].a = reinterpret_cast<const int32_t*>(caches.back().data());
+    for (int c = 0; c < 3; ++c) sources[l].gain[c] = relight::Q1_30::FromRaw((1 << 29) + 1000 * static_cast<int32_t>(l + c));
+  }
+  std::vector<int64_t> scratch(3 * 2048);
+  std::vector<int32_t> out(static_cast<size_t>(receivers) * 3);
+  std::vector<SimdLevel> levels = {SimdLevel::kScalar};
+  for (SimdLevel l : {SimdLevel::kAvx2, SimdLevel::kAvx512Vnni}) {
+    if (relight::CpuSupportsSimdLevel(l)) levels.push_back(l);
+  }
+  std::vector<std::vector<double>> mix_s(levels.size());
+  std::vector<double> read_s;
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    uint64_t sum = 0;
+    for (const auto& c : caches) sum += relight_bench::SumWordsSimd(c);
+    benchmark::DoNotOptimize(sum);
+    read_s.push_back(Seconds(t0, Clock::now()));
+    TimeLevels(levels, &mix_s, [&] {
+      relight::MixLuminairesQ12(sources.data(), luminaires, receivers, scratch.data(),
+                                static_cast<uint32_t>(scratch.size()), out.data());
+      benchmark::DoNotOptimize(out.data());
+    });
+    state.SetIterationTime(mix_s.back().back());
+  }
+  const double read = relight_bench::Median(read_s);
+  for (size_t i = 0; i < levels.size(); ++i) {
+    const std::string name = relight::SimdLevelName(levels[i]);
+    state.counters[name + "_us"] = relight_bench::Median(mix_s[i]) * 1e6;
+    state.counters["ratio_simd_" + name] = relight_bench::Median(mix_s[i]) / read;
+  }
+  state.counters["read_us"] = read * 1e6;
+}
+BENCHMARK(BM_MixPaths)->Args({17533, 52})->Unit(benchmark::kMicrosecond)->UseManualTime();
 
 }  // namespace

@@ -9,7 +9,9 @@
 // GCC 12's AVX-512 headers fill unused merge operands with
 // _mm512_undefined_*(), a self-initialised variable that -Wmaybe-uninitialized
 // reports once inlined here (a header artefact: every lane is written).
+#if !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 
 #define RELIGHT_TARGET_AVX512_VNNI __attribute__((target("avx2,avx512f,avx512bw,avx512vl,avx512vnni")))
 
