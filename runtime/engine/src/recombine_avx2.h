@@ -13,8 +13,8 @@ namespace relight {
 // multiply-adds). RecombineQ12 falls back to the scalar path otherwise.
 inline constexpr int kVectorMultiplierBits = 24;
 
-// True when the CPU runs AVX2 and RELIGHT_FORCE_SCALAR is unset, empty or
-// "0" (checked once).
+// True when the active level (recombine_dispatch.h: the CPU's, capped by
+// RELIGHT_FORCE_SCALAR, RELIGHT_SIMD or SetSimdLevelCap) is AVX2 or above.
 bool CpuHasAvx2();
 
 // The multiplier vectors of one term pair, built once per call and reused for
