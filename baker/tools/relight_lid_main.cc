@@ -99,7 +99,7 @@ int Degree(const std::string& path, double percent) {
     for (ShWindow w : {ShWindow::kNone, ShWindow::kSigma}) {
       const DegreeChoice c = ChooseShDegree(model, percent / 100, w, m);
       std::printf("  %-10s window %-6s degree %2d, error %.2f%%%s\n", LidErrorMeasureName(m),
-                  ShWindowName(w), c.degree, 100 * c.error, c.met ? "" : " (not met at 16)");
+                  ShWindowName(w), c.degree, 100 * c.error, c.met ? "" : " (not met at the maximum)");
     }
   }
   return 0;

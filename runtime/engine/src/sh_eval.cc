@@ -5,7 +5,8 @@
 //
 // Scaling and overflow: inputs Q1.30 are widened to Q3.60; C_m, S_m in Q3.60
 // (|.| <= 1 for a unit vector); q_l^m in Q13.50 because q_l^m itself (without
-// the sin^m factor) reaches ~950 near the poles at l = 16. Every product is
+// the sin^m factor) reaches ~950 near the poles at l = 16, ~6500 at l = 20
+// (kMaxShDegree; Q13.50 holds 8192). Every product is
 // int64 x int64 -> int128 (< 2^127), rounded back to int64 with saturation,
 // so a non-unit input gives wrong numbers, never undefined behaviour. The
 // Q1.30 outputs round once: error <= 1 LSB at every degree (tests measure it).
@@ -18,12 +19,15 @@ namespace relight {
 namespace {
 
 
-// sqrt(num/den) in Q60, for num/den < 64 (floor; error < 1 ulp of Q60).
+// sqrt(num/den) in Q60, for num/den < 64, num and den < 2^32 (floor; error
+// < 1 ulp of Q60).
 int64_t SqrtRatioQ60(uint64_t num, uint64_t den) {
-  // floor(num * 2^120 / den) without overflowing 128 bits.
-  const UInt128 whole = static_cast<UInt128>(num / den) << 120;
-  const UInt128 frac = (static_cast<UInt128>(num % den) << 120) / den;
-  return static_cast<int64_t>(ISqrt128(whole + frac));
+  // floor(num * 2^120 / den) without overflowing 128 bits, in two steps of
+  // 2^60: the remainder is < den, so (rem << 60) < 2^92. (One step of 2^120
+  // on num % den overflowed once den > 256, i.e. from degree 17 on.)
+  const UInt128 hi = (static_cast<UInt128>(num) << 60) / den;  // < 2^66
+  const UInt128 rem = (static_cast<UInt128>(num) << 60) % den;
+  return static_cast<int64_t>(ISqrt128((hi << 60) + (rem << 60) / den));
 }
 
 int64_t MulQ60(int64_t a, int64_t b) {
