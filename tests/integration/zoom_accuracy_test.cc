@@ -25,7 +25,7 @@ TEST_P(CornellZoomAccuracy, SplitModeMeetsTheBars) {
   const BakedScene& baked = BakedFixture("cornell_zoom", baker::DirectModeKind::kExact);
   // The degree came from the narrowest beam, not a default: the widest
   // would have needed fewer terms. (An 11-degree Gaussian misplaces more
-  // than 2 % of its flux even at degree 20, so the choice is the cap; the
+  // than 2 % of its flux even at degree 22, so the choice is the cap; the
   // exact direct term carries the beam's detail and the bars hold anyway.
   // At the old cap, 16, the grid missed the max bar: docs/accuracy.md.)
   ASSERT_EQ(baked.baker->report().zoom_degrees.size(), 1u);

@@ -1,5 +1,5 @@
 // SH degrees above 16 (format version 7, issue 12: the narrowest zooms of
-// real fixture types need degree 20): a bake with one is stamped version 7
+// real fixture types need degree 22): a bake with one is stamped version 7
 // and reads back exactly; without one it keeps its old version; a file that
 // claims an older version with such a degree is corrupt, naming LUMI and the
 // versions; past kMaxShDegree is rejected on write.
@@ -39,9 +39,9 @@ class BakeHighDegreeIoTest : public ::testing::Test {
   std::string path_;
 };
 
-TEST_F(BakeHighDegreeIoTest, Degree20RoundTripsAsVersion7) {
+TEST_F(BakeHighDegreeIoTest, Degree22RoundTripsAsVersion7) {
   const Bake b = WithWashDegree(kMaxShDegree);
-  ASSERT_EQ(kMaxShDegree, 20);
+  ASSERT_EQ(kMaxShDegree, 22);
   ASSERT_TRUE(WriteBake(b, path_).ok());
   const Bytes file = ReadFileBytes(path_);
   EXPECT_EQ(Split(file).version, 7u);
@@ -69,7 +69,7 @@ TEST_F(BakeHighDegreeIoTest, AnOlderVersionWithDegreeAbove16IsCorrupt) {
 TEST_F(BakeHighDegreeIoTest, PastTheMaximumIsRefusedOnWrite) {
   const Status st = WriteBake(WithWashDegree(kMaxShDegree + 1), path_);
   EXPECT_EQ(st.code(), StatusCode::kInvalidArgument) << st.ToString();
-  EXPECT_TRUE(Contains(st.message(), "SH degree 21 exceeds the maximum 20")) << st.message();
+  EXPECT_TRUE(Contains(st.message(), "SH degree 23 exceeds the maximum 22")) << st.message();
 }
 
 }  // namespace

@@ -166,8 +166,8 @@ TEST(ShRotationQ30, MatchesFloat64Recurrence) {
   std::printf("SH rotation up to l = %d: max |Q1.30 - float64| = %.2e (%.1f LSB)\n", kMaxShDegree,
               worst, worst * kQ30);
   // The recurrence's rounding grows with the degree: measured 2.8e-8 (30 LSB)
-  // at l = 20, the bound had been 2e-8 at l = 16.
-  EXPECT_LT(worst, 4e-8);
+  // at l = 20 and 4.8e-8 (51 LSB) at l = 22; the bound had been 2e-8 at l = 16.
+  EXPECT_LT(worst, 6e-8);
 }
 
 TEST(ShRotationQ30, RotatedCoefficientsMatchFloat64) {

@@ -32,7 +32,7 @@ inline constexpr uint32_t kFirstVersionWithCompressed = 5;
 // Version 6: a GLNK section (links from the nodes to the grid points) may
 // follow LINK. Written only when the hierarchy has them.
 inline constexpr uint32_t kFirstVersionWithGridLinks = 6;
-// Version 7: a luminaire's SH degree may exceed 16 (up to kMaxShDegree, 20:
+// Version 7: a luminaire's SH degree may exceed 16 (up to kMaxShDegree, 22:
 // narrow zooms, issue 12). Nothing else changed, so the writer stamps it only
 // when some degree does; a version 6 reader then stops at the version, not at
 // a degree it would call corrupt.
