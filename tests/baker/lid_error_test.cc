@@ -13,6 +13,7 @@
 #include "relight/baker/photometric_file.h"
 #include "relight/baker/photometry.h"
 #include "relight/baker/polar_plot.h"
+#include "relight/base/sh_index.h"
 
 namespace relight::baker {
 namespace {
