@@ -155,7 +155,7 @@ void PrintSummary(const Scene& scene, const relight::baker::BakeReport& r,
                 "(window %s)%s\n",
                 d.name.c_str(), d.choice.degree, relight::baker::LidErrorMeasureName(d.measure),
                 100 * d.choice.error, relight::baker::ShWindowName(d.window),
-                d.choice.met ? "" : ": the 2% target is not met even at degree 16");
+                d.choice.met ? "" : ": the 2% target is not met even at the maximum degree");
   }
   std::printf(
       "relight-bake: %s: %zu patches, %zu vertices, %zu triangles, %zu grid points, "
@@ -215,7 +215,7 @@ int Run(const Args& args, const relight::baker::DistributedSession& mpi) {
                   d.name.c_str(), d.choice.degree, d.old_degree,
                   relight::baker::LidErrorMeasureName(d.measure), 100 * d.choice.error,
                   relight::baker::ShWindowName(d.window),
-                  d.choice.met ? "" : ": the target is not met even at degree 16");
+                  d.choice.met ? "" : ": the target is not met even at the maximum degree");
     }
   }
 

@@ -206,7 +206,7 @@ TEST(RecombineQ12, SaturatesExactlyAndNeverWraps) {
     EXPECT_EQ(out[1], kMax - 1);  // 2^32 - 4 -> 2^31 - 2
     EXPECT_EQ(out[2], kMin);      // -2^32 -> -2^31 exactly
   }
-  // The largest possible accumulator: 289 terms of 32767 x (2^31 - 1), both signs.
+  // The largest possible accumulator: 529 terms (kMaxShDegree 22) of 32767 x (2^31 - 1), both signs.
   {
     const uint32_t terms = ShTermCount(kMaxShDegree);
     std::vector<int16_t> q(terms * 3);
@@ -219,7 +219,7 @@ TEST(RecombineQ12, SaturatesExactlyAndNeverWraps) {
       k[t * 3 + 1] = kMax;
       k[t * 3 + 2] = -kMax;
     }
-    // |sum| = 289 x 32767 x (2^31 - 1) ~ 2^54.2: saturates for shifts up to 23.
+    // |sum| = 529 x 32767 x (2^31 - 1) ~ 2^55.1: saturates for shifts up to 24.
     for (int shift : {0, 23, 24, 31, 62}) {
       RecombineQ12(q.data(), terms, 1, k.data(), shift, scratch, 12, out);
       for (uint32_t c = 0; c < 3; ++c) {
