@@ -123,7 +123,7 @@ void PrintSurfaceTable(const BakerCore& dense, const BakerCore& hier,
 }
 
 int Run(const std::string& path, double patch_size_m, double epsilon, double tolerance,
-        int threads, bool adaptive_visibility) {
+        int threads, bool adaptive_visibility, bool absolute_links) {
   Scene scene = LoadScene(path);
   if (patch_size_m > 0) scene.patch_size_m = patch_size_m;
   BakeOptions dense_options;
@@ -133,6 +133,7 @@ int Run(const std::string& path, double patch_size_m, double epsilon, double tol
   hier_options.solver = SolverKind::kHierarchical;
   hier_options.link_epsilon = epsilon;
   hier_options.adaptive_visibility = adaptive_visibility;
+  hier_options.receiver_relative_links = !absolute_links;
   if (tolerance > 0) hier_options.solve_tolerance = tolerance;
 
   auto t = Clock::now();
@@ -208,9 +209,13 @@ int main(int argc, char** argv) {
   bool adaptive_visibility = false;
   app.add_flag("--adaptive-visibility", adaptive_visibility,
                "256 visibility rays where a node pair's 16 disagree");
+  bool absolute_links = false;
+  app.add_flag("--absolute-links", absolute_links,
+               "the absolute link bound alone (no receiver-relative refinement)");
   CLI11_PARSE(app, argc, argv);
   try {
-    return Run(scene, patch_size_m, epsilon, tolerance, threads, adaptive_visibility);
+    return Run(scene, patch_size_m, epsilon, tolerance, threads, adaptive_visibility,
+               absolute_links);
   } catch (const SceneError& e) {
     std::fprintf(stderr, "relight-solver-compare: error: %s\n", e.what());
     return 2;

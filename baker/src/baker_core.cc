@@ -101,19 +101,33 @@ void BuildHierarchicalSolver(BakerCore* core, Progress* progress) {
   }
   const double epsilon = o.link_epsilon * flux / area;
   const int rank = o.share ? o.share->rank() : 0, ranks = o.share ? o.share->ranks() : 1;
-  std::vector<HierarchyLink> links =
-      RefineLinks(mesh, *core->visibility, core->samples, h, brightness, epsilon,
-                  o.adaptive_visibility, o.threads, progress, rank, ranks);
-  if (ranks > 1) links = ShareLinks(*o.share, links);
-  core->report.nodes = h.nodes.size();
-  core->report.links = links.size();
-  core->report.form_factor_seconds += ff_time.seconds();
   std::vector<Rgb> rho;
   rho.reserve(mesh.patch_count());
   for (const Patch& p : mesh.patches) rho.push_back(p.reflectance);
   HierarchicalSolveOptions solve;
   solve.tolerance = o.solve_tolerance;
   solve.threads = o.threads;
+  std::vector<HierarchyLink> links =
+      RefineLinks(mesh, *core->visibility, core->samples, h, brightness, epsilon,
+                  o.adaptive_visibility, o.threads, progress, rank, ranks);
+  if (ranks > 1) links = ShareLinks(*o.share, links);
+  // Receiver-relative: a first solve over these links, then every link again
+  // against its receiver's own light (link_brightness.h). Every rank solves
+  // the same links alike, so the shares still make one set.
+  const std::vector<double> peak_direct = PeakDirectIlluminance(mesh, core->scene, core->direct);
+  const bool lit = std::any_of(peak_direct.begin(), peak_direct.end(), [](double e) { return e > 0; });
+  if (o.receiver_relative_links && lit && o.link_epsilon > 0) {
+    const RefinementEstimate estimate = [&] {
+      const HierarchicalSolver first(h, std::move(links), rho, solve);
+      return ReceiverRelativeEstimate(mesh, h, first, peak_direct, o.link_epsilon, epsilon);
+    }();
+    links = RefineLinks(mesh, *core->visibility, core->samples, h, estimate.brightness,
+                        estimate.bound, o.adaptive_visibility, o.threads, progress, rank, ranks);
+    if (ranks > 1) links = ShareLinks(*o.share, links);
+  }
+  core->report.nodes = h.nodes.size();
+  core->report.links = links.size();
+  core->report.form_factor_seconds += ff_time.seconds();
   core->hierarchical_solver =
       std::make_unique<HierarchicalSolver>(std::move(h), std::move(links), rho, solve);
 }

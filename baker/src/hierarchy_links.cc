@@ -98,7 +98,7 @@ class Refiner {
  public:
   Refiner(const Mesh& mesh, const Visibility& vis, const PatchSampleSets& patch_samples,
           const Hierarchy& h, const NodeSamples& samples, const std::vector<double>& brightness,
-          double epsilon, bool adaptive)
+          const std::vector<double>& epsilon, bool adaptive)
       : mesh_(mesh),
         vis_(vis),
         patch_samples_(patch_samples),
@@ -127,14 +127,16 @@ class Refiner {
     // misses. A few rays decide a partly hidden pair's visibility only
     // roughly: then all of its light may be wrong. Rays are only cast for a
     // pair that would otherwise become a link.
-    const double in_view = std::max(
-        std::max(f.residual_pq, kQuadratureError * f.f_pq) * brightness_[q],
-        std::max(f.residual_qp, kQuadratureError * f.f_qp) * brightness_[p]);
-    bool split = in_view > epsilon_ || p_straddles || q_straddles;
+    // Each direction against its receiver's own bound.
+    const bool in_view =
+        std::max(f.residual_pq, kQuadratureError * f.f_pq) * brightness_[q] > epsilon_[p] ||
+        std::max(f.residual_qp, kQuadratureError * f.f_qp) * brightness_[p] > epsilon_[q];
+    bool split = in_view || p_straddles || q_straddles;
     double v = 1;
     if (!split) {
       v = NodeVisibleFraction(h_, samples_, vis_, p, q, adaptive_);
-      split = v < 1 && std::max(f.f_pq * brightness_[q], f.f_qp * brightness_[p]) > epsilon_;
+      split = v < 1 &&
+              (f.f_pq * brightness_[q] > epsilon_[p] || f.f_qp * brightness_[p] > epsilon_[q]);
     }
     if (split) {
       // Split a node that crosses the other's plane, else the larger one (a
@@ -164,7 +166,7 @@ class Refiner {
   const Hierarchy& h_;
   const NodeSamples& samples_;
   const std::vector<double>& brightness_;
-  double epsilon_;
+  const std::vector<double>& epsilon_;
   bool adaptive_;
 };
 
@@ -222,9 +224,10 @@ double NodeVisibleFraction(const Hierarchy& h, const NodeSamples& samples, const
 
 std::vector<HierarchyLink> RefineLinks(const Mesh& mesh, const Visibility& vis,
                                        const PatchSampleSets& patch_samples, const Hierarchy& h,
-                                       const std::vector<double>& brightness, double epsilon,
-                                       bool adaptive, int threads, Progress* progress,
-                                       int share_rank, int share_ranks) {
+                                       const std::vector<double>& brightness,
+                                       const std::vector<double>& epsilon, bool adaptive,
+                                       int threads, Progress* progress, int share_rank,
+                                       int share_ranks) {
   const NodeSamples samples(h, patch_samples);
   const Refiner refiner(mesh, vis, patch_samples, h, samples, brightness, epsilon, adaptive);
 
@@ -288,6 +291,16 @@ std::vector<HierarchyLink> RefineLinks(const Mesh& mesh, const Visibility& vis,
     return x.p != y.p ? x.p < y.p : x.q < y.q;
   });
   return links;
+}
+
+std::vector<HierarchyLink> RefineLinks(const Mesh& mesh, const Visibility& vis,
+                                       const PatchSampleSets& patch_samples, const Hierarchy& h,
+                                       const std::vector<double>& brightness, double epsilon,
+                                       bool adaptive, int threads, Progress* progress,
+                                       int share_rank, int share_ranks) {
+  return RefineLinks(mesh, vis, patch_samples, h, brightness,
+                     std::vector<double>(h.nodes.size(), epsilon), adaptive, threads, progress,
+                     share_rank, share_ranks);
 }
 
 }  // namespace relight::baker

@@ -64,8 +64,17 @@ double NodeVisibleFraction(const Hierarchy& h, const NodeSamples& samples, const
 // share_rank / share_ranks: refine only every share_ranks-th root pair
 // (by size), from share_rank on; the shares' links together are all of them.
 // brightness: per node, an estimate of its exitance (any unit; only F times
-// it is compared with epsilon, in the same unit). Deterministic: links come
+// it is compared with epsilon, in the same unit). epsilon: per node, the
+// largest error allowed in the light one link brings to it as a receiver
+// (link_brightness.h, ReceiverRelativeEstimate). Deterministic: links come
 // out sorted by (p, q) whatever the thread count.
+std::vector<HierarchyLink> RefineLinks(const Mesh& mesh, const Visibility& vis,
+                                       const PatchSampleSets& patch_samples, const Hierarchy& h,
+                                       const std::vector<double>& brightness,
+                                       const std::vector<double>& epsilon,
+                                       bool adaptive_visibility, int threads, Progress* progress,
+                                       int share_rank = 0, int share_ranks = 1);
+// One bound for every receiver (BF refinement's absolute epsilon).
 std::vector<HierarchyLink> RefineLinks(const Mesh& mesh, const Visibility& vis,
                                        const PatchSampleSets& patch_samples, const Hierarchy& h,
                                        const std::vector<double>& brightness, double epsilon,

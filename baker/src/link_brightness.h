@@ -17,10 +17,45 @@
 
 #include "direct_light.h"
 #include "hierarchy.h"
+#include "hierarchy_solve.h"
 
 namespace relight::baker {
 
+// Per mesh patch, E_i above (lux).
+std::vector<double> PeakDirectIlluminance(const Mesh& mesh, const Scene& scene,
+                                          const std::vector<LuminaireDirect>& direct);
+
 std::vector<double> RefinementBrightness(const Scene& scene, const Mesh& mesh, const Hierarchy& h,
                                          const std::vector<LuminaireDirect>& direct);
+
+
+// Receiver-relative refinement (docs/hierarchy.md). An absolute bound
+// (epsilon of the scene's mean exitance) leaves surfaces 30-1000x dimmer
+// than the room with errors large against their own light. A first solve
+// over the absolute bound's links spreads the peak direct light E_i; from it
+//   brightness[n] = max over channels of the solved exitance, area mean over
+//                   n's leaves, + kSourceSpread x the mean |B_leaf - B_n|
+//                   (a link takes its source as uniform plus a linear
+//                   moment; a source whose exitance varies more errs more);
+//   bound[n]      = min(absolute, kReceiverRelative x link_epsilon x E_n),
+//                   E_n the least total illuminance (direct + interreflected)
+//                   of n's leaves, at least kDarkFloor x its surface's peak;
+//                   never below kAbsoluteFloor x absolute (an unlit surface
+//                   would otherwise link leaf to leaf with everything).
+// The least, not the mean: dim parts of bright surfaces (the wall in the
+// 5 cm behind the sofa) light dim surfaces, whose error is then theirs.
+constexpr double kReceiverRelative = 0.3;
+constexpr double kDarkFloor = 0.01;
+constexpr double kAbsoluteFloor = 0.01;
+// With kQuadratureError = 0.1 a link in full view counts F x the spread.
+constexpr double kSourceSpread = 10.0;
+
+struct RefinementEstimate {
+  std::vector<double> brightness, bound;  // per node
+};
+RefinementEstimate ReceiverRelativeEstimate(const Mesh& mesh, const Hierarchy& h,
+                                            const HierarchicalSolver& first,
+                                            const std::vector<double>& peak_direct,
+                                            double link_epsilon, double absolute_bound);
 
 }  // namespace relight::baker

@@ -4,6 +4,7 @@
 #include "luminaire_toml.h"
 
 #include "lid_toml.h"
+#include "relight/base/sh_index.h"
 #include "relight/baker/fixture_frame.h"
 #include "vec3_math.h"
 
@@ -63,7 +64,7 @@ Luminaire ReadLuminaire(const toml::table& table, const std::string& path,
     for (size_t k = 0; k < 3; ++k)
       lum.colour[k] = f.ReadNumber(*array->get(k), "colour", Closed(0, 1));
   }
-  lum.sh_degree = static_cast<int>(f.Integer("sh_degree", 0, 16, 8));
+  lum.sh_degree = static_cast<int>(f.Integer("sh_degree", 0, kMaxShDegree, 8));
   lum.sh_degree_given = f.Has("sh_degree");
   if (f.Has("sigma")) lum.use_sigma = f.Bool("sigma", true);
   lum.lid = ReadLid(TomlFields(f.Table("lid"), path, f.what() + " lid"));

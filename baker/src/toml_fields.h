@@ -1,7 +1,7 @@
 // Typed, checked access to one TOML table of a scene file. Every failure
 // throws SceneError naming file:line, the object ("luminaire 'spot1'") and
 // what was expected, e.g.
-//   scene.toml:12: luminaire 'spot1': sh_degree must be an integer 0..16, got 20
+//   scene.toml:12: luminaire 'spot1': sh_degree must be an integer 0..22, got 23
 #pragma once
 
 #include <toml++/toml.h>

@@ -132,7 +132,7 @@ int Run(const std::string& scene_path, relight::baker::DirectModeKind mode, cons
     for (const auto& d : degrees) {
       std::printf("| %s | %s | %s | %d | %.2f%%%s |\n", d.name.c_str(),
                   relight::baker::LidErrorMeasureName(d.measure), relight::baker::ShWindowName(d.window),
-                  d.choice.degree, 100 * d.choice.error, d.choice.met ? "" : " (target not met at 16)");
+                  d.choice.degree, 100 * d.choice.error, d.choice.met ? "" : " (target not met at the maximum degree)");
     }
     std::printf("\n");
   }

@@ -99,7 +99,7 @@ int Degree(const std::string& path, double percent) {
     for (ShWindow w : {ShWindow::kNone, ShWindow::kSigma}) {
       const DegreeChoice c = ChooseShDegree(model, percent / 100, w, m);
       std::printf("  %-10s window %-6s degree %2d, error %.2f%%%s\n", LidErrorMeasureName(m),
-                  ShWindowName(w), c.degree, 100 * c.error, c.met ? "" : " (not met at 16)");
+                  ShWindowName(w), c.degree, 100 * c.error, c.met ? "" : " (not met at the maximum)");
     }
   }
   return 0;
@@ -174,7 +174,7 @@ int main(int argc, char** argv) {
   CLI::App* plot = app.add_subcommand("plot", "polar plot (SVG) of a file's distribution vs its SH series");
   plot->add_option("file", file, ".ies or .ldt file")->required();
   plot->add_option("-o,--output", out, "SVG file")->required();
-  plot->add_option("--degree", degree, "SH degree N")->check(CLI::Range(0, 16))->capture_default_str();
+  plot->add_option("--degree", degree, "SH degree N")->check(CLI::Range(0, relight::kMaxShDegree))->capture_default_str();
   plot->add_option("--window", windows, "comma-separated: none, sigma, hanning, lanczos, sloan")
       ->capture_default_str();
   std::vector<std::string> points;
@@ -183,7 +183,7 @@ int main(int argc, char** argv) {
   edit->add_option("file", file, ".ies or .ldt file")->required();
   edit->add_option("--point", points, "GAMMA=CD (every plane) or C:GAMMA=CD (one stored plane); repeatable");
   edit->add_option("--scale", scale, "multiply every intensity first")->check(CLI::Range(0.0, 1e6));
-  edit->add_option("--degree", degree, "Legendre degree to report")->check(CLI::Range(0, 16))->capture_default_str();
+  edit->add_option("--degree", degree, "Legendre degree to report")->check(CLI::Range(0, relight::kMaxShDegree))->capture_default_str();
   edit->add_option("-o,--output", out, "output .ies (LM-63-2002) or .ldt")->required();
   CLI::App* deg = app.add_subcommand("degree", "SH degree a file needs for an error target");
   deg->add_option("file", file, ".ies or .ldt file")->required();

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "compressed_recombine.h"
+#include "recombine_bench_data.h"
 #include "direct.h"
 #include "direct_aimed.h"
 #include "recombine.h"
@@ -38,34 +39,12 @@
 
 namespace {
 
-// Smooth-ish random int16 data: what the bake's quantised bases look like to
-// the memory system (values do not change the kernel's speed).
-std::vector<int16_t> MakeBasis(uint32_t terms, uint32_t receivers) {
-  std::vector<int16_t> basis(static_cast<size_t>(terms) * receivers * 3);
-  std::mt19937 rng(7);
-  std::uniform_int_distribution<int> step(-64, 64);
-  int v = 0;
-  for (int16_t& q : basis) {
-    v = std::max(-32767, std::min(32767, v + step(rng)));
-    q = static_cast<int16_t>(v);
-  }
-  return basis;
-}
-
-uint64_t SumWords(const std::vector<int16_t>& basis) {
-  const size_t words = basis.size() * sizeof(int16_t) / sizeof(uint64_t);
-  const uint64_t* p = reinterpret_cast<const uint64_t*>(basis.data());
-  uint64_t sum = 0;
-  for (size_t i = 0; i < words; ++i) sum += p[i];
-  return sum;
-}
-
-// Per-term, per-channel multipliers spread over +-10^6 (|k| < 2^24: the vector path).
-std::vector<int32_t> MakeMultipliers(uint32_t terms) {
-  std::vector<int32_t> k(static_cast<size_t>(terms) * 3);
-  for (size_t i = 0; i < k.size(); ++i) k[i] = static_cast<int32_t>(1000003 * (i + 1) % 2000000) - 1000000;
-  return k;
-}
+using relight_bench::MakeBasis;
+using relight_bench::MakeCompressed;
+using relight_bench::MakeMultipliers;
+using relight_bench::Median;
+using relight_bench::SumWords;
+using relight_bench::SumWordsSimd;
 
 // The baseline: sum every 64-bit word of the buffer (the compiler vectorises
 // this freely; it is bound by memory bandwidth, like the kernel should be).
@@ -77,32 +56,6 @@ void BM_StreamRead(benchmark::State& state) {
     benchmark::DoNotOptimize(SumWords(basis));
   }
   state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(basis.size() * 2));
-}
-
-// A harder baseline: the same bytes read with 256-bit loads into four
-// independent accumulators (what the load ports allow, not just what a plain
-// loop gets). Reported beside the plain one, as "ratio_simd".
-__attribute__((target("avx2"))) uint64_t SumWordsSimd(const std::vector<int16_t>& basis) {
-  const size_t vectors = basis.size() * sizeof(int16_t) / sizeof(__m256i);
-  const __m256i* p = reinterpret_cast<const __m256i*>(basis.data());
-  __m256i s0 = _mm256_setzero_si256(), s1 = s0, s2 = s0, s3 = s0;
-  size_t i = 0;
-  for (; i + 4 <= vectors; i += 4) {
-    s0 = _mm256_add_epi64(s0, _mm256_loadu_si256(p + i));
-    s1 = _mm256_add_epi64(s1, _mm256_loadu_si256(p + i + 1));
-    s2 = _mm256_add_epi64(s2, _mm256_loadu_si256(p + i + 2));
-    s3 = _mm256_add_epi64(s3, _mm256_loadu_si256(p + i + 3));
-  }
-  for (; i < vectors; ++i) s0 = _mm256_add_epi64(s0, _mm256_loadu_si256(p + i));
-  const __m256i s = _mm256_add_epi64(_mm256_add_epi64(s0, s1), _mm256_add_epi64(s2, s3));
-  alignas(32) uint64_t lanes[4];
-  _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), s);
-  return lanes[0] + lanes[1] + lanes[2] + lanes[3];
-}
-
-double Median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-  return v[v.size() / 2];
 }
 
 // The bar itself: StreamRead and Recombine timed alternately on the same
@@ -165,25 +118,6 @@ void SizeArgs(benchmark::internal::Benchmark* b) {
 }
 BENCHMARK(BM_StreamRead)->Apply(SizeArgs);
 BENCHMARK(BM_RecombineOverStream)->Apply(SizeArgs)->UseManualTime();
-// A compressed basis (bake.h BakeCompressedBasis) of `terms` terms over
-// `receivers` in clusters of `cluster` receivers with r components, random
-// values in range (values do not change the kernel's speed).
-relight::BakeCompressedBasis MakeCompressed(uint32_t terms, uint32_t receivers, uint32_t r,
-                                            uint32_t cluster) {
-  relight::BakeCompressedBasis c;
-  c.components = r;
-  for (uint32_t s = 0; s < receivers; s += cluster) c.cluster_start.push_back(s);
-  c.cluster_start.push_back(receivers);
-  const size_t vectors = size_t{c.cluster_count()} * (r + 1);
-  c.vectors = MakeBasis(terms, static_cast<uint32_t>(vectors));
-  c.vector_scale.assign(size_t{terms} * 3, relight::QuantScale{1 << 29, -20});
-  std::mt19937 rng(11);
-  std::uniform_int_distribution<int> w(-relight::kCompressedWeightOne, relight::kCompressedWeightOne);
-  c.weights.resize(size_t{receivers} * r);
-  for (int16_t& q : c.weights) q = static_cast<int16_t>(w(rng));
-  return c;
-}
-
 // The compressed kernel's bar (issue 13): RecombineCompressedQ12 (projection
 // of the look onto the cluster vectors, then r-long dot products per
 // receiver) against a vectorised read of the bytes it reads (its weights and

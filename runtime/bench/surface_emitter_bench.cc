@@ -25,6 +25,9 @@
 //
 //   surface_emitter_bench BAKE.rlb SURFACE x0,y0,z0 x1,y1,z1 x2,y2,z2 [--benchmark_...]
 //
+// On a loaded machine two threads' CPU time counts the pool's waiting:
+// RELIGHT_THREADS=1 in the environment gives one thread's CPU per change.
+//
 // The emitter is the triangle given; the place spots are it and it moved by
 // its first edge's length + 5 cm along that edge and across it, so the
 // surface must have room for them. docs/hierarchy.md has the figures.

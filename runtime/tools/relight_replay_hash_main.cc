@@ -44,7 +44,8 @@ constexpr const char* kUsage =
     "                  --emitter (SURFACE:L:x,y,z;x,y,z;x,y,z[;...]); repeatable\n"
     "  --dump DIR      also write DIR/frame_NNNN.luminance (int32 little-endian, 3 per vertex)\n"
     "                  and DIR/frame_NNNN.rgb8 (3 bytes per vertex)\n"
-    "Set RELIGHT_FORCE_SCALAR=1 to keep the recombination off its AVX2 path.\n";
+    "Set RELIGHT_FORCE_SCALAR=1 to keep the recombination off its vector paths, RELIGHT_SIMD=avx2 (or avxvnni,\n"
+    "avx512vnni) to cap them at that level (the hashes are the same on every path).\n";
 
 struct Args {
   std::string bake_path, script_path, dump_dir;

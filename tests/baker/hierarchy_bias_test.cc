@@ -8,6 +8,7 @@
 // stored: the test measures, it does not compare against recorded numbers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -19,18 +20,22 @@
 namespace relight::baker {
 namespace {
 
-// Finer than the default 1e-3: with the bias gone, what is left is the
-// refinement's noise, and at 1e-3 a dim block side or wall reaches 1.0-1.1 %
-// at its worst vertex (measured: docs/hierarchy.md).
-constexpr double kLinkEpsilon = 5e-4;
-
-void ExpectAgreement(const std::string& fixture) {
+// At the default link epsilon (1e-3) with the receiver-relative bound
+// (BakeOptions::receiver_relative_links): with an absolute bound only, a dim
+// wall reached 1.0-1.1 % at its worst vertex and 32 of the living room's 48
+// surfaces were over the bar (docs/hierarchy.md, "Receiver-relative
+// refinement"). signed_bound: the largest |mean signed difference| of one
+// surface; the living room's shelf/+y sits at +0.19 % (measured, not fixed).
+// also_absolute: also bake with the absolute bound alone and check it is
+// far off on some surface (the receiver-relative bound is what helps, and
+// the check above can fail); it reuses the dense solve.
+void ExpectAgreement(const std::string& fixture, double signed_bound = 0.001,
+                     bool also_absolute = false) {
   const Scene scene = LoadScene(std::string(RELIGHT_SOURCE_DIR) + "/fixtures/" + fixture);
   BakeOptions dense_options;
   dense_options.solver = SolverKind::kDense;
   BakeOptions hier_options;
   hier_options.solver = SolverKind::kHierarchical;
-  hier_options.link_epsilon = kLinkEpsilon;
   const auto dense = BuildBakerCore(scene, dense_options, nullptr);
   const auto hier = BuildBakerCore(scene, hier_options, nullptr);
   std::vector<FixtureSetting> settings;
@@ -47,7 +52,7 @@ void ExpectAgreement(const std::string& fixture) {
     EXPECT_LE(a.mean_abs, 0.003) << a.name;
     EXPECT_LE(a.max_abs, 0.01) << a.name;
     // A bias would put the signed mean near the mean |.|; noise keeps it small.
-    EXPECT_LE(std::abs(a.mean_signed), 0.001) << a.name;
+    EXPECT_LE(std::abs(a.mean_signed), signed_bound) << a.name;
     sum_signed += a.mean_signed;
     ::testing::Test::RecordProperty(a.name + "_mean_signed", std::to_string(a.mean_signed));
     ::testing::Test::RecordProperty(a.name + "_max_abs", std::to_string(a.max_abs));
@@ -57,6 +62,17 @@ void ExpectAgreement(const std::string& fixture) {
   // The solve stopped on its residual, and says where.
   EXPECT_GT(hier->hierarchical_solver->max_residual(), 0);
   EXPECT_LE(hier->hierarchical_solver->max_residual(), hier_options.solve_tolerance);
+  if (!also_absolute) return;
+  BakeOptions absolute = hier_options;
+  absolute.receiver_relative_links = false;
+  const auto loose = BuildBakerCore(scene, absolute, nullptr);
+  const ReferenceResult loose_got = ComputeReference(*loose, settings);
+  double worst = 0;
+  for (const SurfaceAgreement& a :
+       CompareBySurface(scene, dense->mesh, loose_got.vertex_luminance, want.vertex_luminance))
+    worst = std::max(worst, a.max_abs);
+  EXPECT_GT(worst, 0.05);
+  EXPECT_LT(loose->report.links, hier->report.links);
 }
 
 TEST(HierarchyBias, GreyRoomAgreesWithTheDenseSolvePerSurface) {
@@ -65,6 +81,13 @@ TEST(HierarchyBias, GreyRoomAgreesWithTheDenseSolvePerSurface) {
 
 TEST(HierarchyBias, CornellBoxAgreesWithTheDenseSolvePerSurface) {
   ExpectAgreement("cornell_box.toml");
+}
+
+// 48 surfaces, 2 715 patches: the sofa's faces in the 5 cm gap to the wall
+// are 30-1000x dimmer than the room. With the absolute bound alone the sofa
+// face in the gap is off by 91 % of its peak at its worst vertex.
+TEST(HierarchyBias, LivingRoomAgreesWithTheDenseSolvePerSurface) {
+  ExpectAgreement("living_room.toml", 0.002, /*also_absolute=*/true);
 }
 
 // The residual criterion: a tighter tolerance gives a smaller residual, and

@@ -13,6 +13,7 @@
 #include "relight/baker/photometric_file.h"
 #include "relight/baker/photometry.h"
 #include "relight/baker/polar_plot.h"
+#include "relight/base/sh_index.h"
 
 namespace relight::baker {
 namespace {
@@ -81,7 +82,7 @@ TEST(LidError, ChoosesTheSmallestDegreeThatMeetsTheTarget) {
   EXPECT_GT(model.Error(c.degree - 1, ShWindow::kNone, LidErrorMeasure::kZonalFlux), 0.02);
   const DegreeChoice impossible = ChooseShDegree(model, 1e-9, ShWindow::kNone, LidErrorMeasure::kL2);
   EXPECT_FALSE(impossible.met);
-  EXPECT_EQ(impossible.degree, 16);
+  EXPECT_EQ(impossible.degree, kMaxShDegree);
 
   Scene scene;
   Luminaire a, b;

@@ -688,7 +688,7 @@ TEST(Bake, BadInputIsASceneError) {
   EXPECT_THROW(Baker(scene, BakeOptions{}), SceneError);
   scene = ClosedBox(0.5, {0.5, 0.5, 0.5});
   scene.luminaires.push_back(Luminaire{});
-  scene.luminaires[0].sh_degree = 17;
+  scene.luminaires[0].sh_degree = kMaxShDegree + 1;
   scene.luminaires[0].line = 12;
   try {
     Baker baker(scene, BakeOptions{});

@@ -505,7 +505,7 @@ TEST_F(SceneFiles, WrongType) {
                   "[[luminaire]]\nname = \"spot1\"\nposition = [0, 0, 2]\nmounting = \"hanging\"\n"
                   "sh_degree = \"eight\"\nlid = { type = \"isotropic\", peak_cd = 100 }\n",
               kHeaderLines + 4 + 5,
-              {"luminaire 'spot1'", "sh_degree must be an integer 0..16, got \"eight\""});
+              {"luminaire 'spot1'", "sh_degree must be an integer 0..22, got \"eight\""});
   ExpectError(Header() +
                   "[[quad]]\nname = \"q\"\ncorners = [[0, 0, 0], [1, 0, 0], [1, 1, 0], \"x\"]\n"
                   "material = \"grey\"\n",
@@ -517,9 +517,9 @@ TEST_F(SceneFiles, WrongType) {
 TEST_F(SceneFiles, ShDegreeOutOfRangeNamesLineAndRange) {
   ExpectError(Header() + Floor() +
                   "[[luminaire]]\nname = \"spot1\"\nposition = [0, 0, 2]\nmounting = \"hanging\"\n"
-                  "sh_degree = 20\nlid = { type = \"isotropic\", peak_cd = 100 }\n",
+                  "sh_degree = 23\nlid = { type = \"isotropic\", peak_cd = 100 }\n",
               kHeaderLines + 4 + 5,
-              {"luminaire 'spot1': sh_degree must be an integer 0..16, got 20"});
+              {"luminaire 'spot1': sh_degree must be an integer 0..22, got 23"});
 }
 
 TEST_F(SceneFiles, UnknownKey) {

@@ -181,7 +181,7 @@ TEST(Daemon, FadesRampLinearlyAndTheSquareCurveShapesTheDimmer) {
 }
 
 // Zoom over Modbus (issue 12): a patch layout with a zoom register, on the
-// Cornell box with a zooming spot (15..60 degrees). The register holds the
+// Cornell box with a zooming spot (11..60 degrees). The register holds the
 // bake's beam angle at start, a write reaches Engine::SetZoom, a write past
 // the lens clamps to its range.
 TEST(Daemon, AZoomRegisterZoomsTheLuminaire) {

@@ -1,5 +1,6 @@
 // Zoom at run time, end to end: fixtures/cornell_zoom.toml (a Gaussian beam
-// zooming 15..60 degrees, lumens held) baked once at the degree the baker
+// zooming 11..60 degrees, lumens held: 11 is the narrowest real zoom of the
+// stage's types) baked once at the degree the baker
 // picks for the narrowest beam; the fixed-point engine zoomed with SetZoom
 // against the float64 reference solve of the beam at the same angle. Bars
 // (issue 12): max <= 2 % of the peak, mean <= 0.3 %, at the narrowest,
@@ -23,9 +24,10 @@ class CornellZoomAccuracy : public ::testing::TestWithParam<double> {};
 TEST_P(CornellZoomAccuracy, SplitModeMeetsTheBars) {
   const BakedScene& baked = BakedFixture("cornell_zoom", baker::DirectModeKind::kExact);
   // The degree came from the narrowest beam, not a default: the widest
-  // would have needed fewer terms. (A 15-degree Gaussian misplaces more
-  // than 2 % of its flux even at degree 16, so the choice is the cap; the
-  // exact direct term carries the beam's detail and the bars hold anyway.)
+  // would have needed fewer terms. (An 11-degree Gaussian misplaces more
+  // than 2 % of its flux even at degree 22, so the choice is the cap; the
+  // exact direct term carries the beam's detail and the bars hold anyway.
+  // At the old cap, 16, the grid missed the max bar: docs/accuracy.md.)
   ASSERT_EQ(baked.baker->report().zoom_degrees.size(), 1u);
   const baker::LuminaireDegree& chosen = baked.baker->report().zoom_degrees[0];
   EXPECT_EQ(baked.bake.luminaires[0].sh_degree, chosen.choice.degree);
@@ -62,11 +64,11 @@ TEST(CornellZoom, ZoomChangesTheLightBeyondTheBars) {
   Engine engine;
   ASSERT_TRUE(engine.Open(baked.bake_path).ok());
   std::vector<baker::FixtureSetting> narrow = baked.baker->DefaultSettings(), wide = narrow;
-  narrow[0].zoom_deg = 15;
+  narrow[0].zoom_deg = 11;
   wide[0].zoom_deg = 60;
   const baker::ReferenceResult ref_narrow = baked.baker->Reference(narrow);
   const baker::AccuracyReport r = baker::CompareWithReference(&engine, ref_narrow, wide);
-  std::printf("[cornell zoom] engine at 60 deg vs reference at 15 deg: max %.1f%% mean %.2f%%\n",
+  std::printf("[cornell zoom] engine at 60 deg vs reference at 11 deg: max %.1f%% mean %.2f%%\n",
               100 * r.vertices.max_rel, 100 * r.vertices.mean_rel);
   EXPECT_GT(r.vertices.max_rel, 0.2);
   EXPECT_GT(r.vertices.mean_rel, 0.003);
@@ -92,13 +94,13 @@ TEST(CornellZoom, TheReferenceRefusesAZoomForAFixedBeamAndClampsPastTheRange) {
   const BakedScene& zoom = BakedFixture("cornell_zoom", baker::DirectModeKind::kExact);
   std::vector<baker::FixtureSetting> below = zoom.baker->DefaultSettings(), narrowest = below;
   below[0].zoom_deg = 5;
-  narrowest[0].zoom_deg = 15;
+  narrowest[0].zoom_deg = 11;
   const baker::ReferenceResult a = zoom.baker->Reference(below), b = zoom.baker->Reference(narrowest);
   EXPECT_TRUE(a.vertex_luminance == b.vertex_luminance);
   EXPECT_TRUE(a.grid_illuminance == b.grid_illuminance);
 }
 
-INSTANTIATE_TEST_SUITE_P(Zooms, CornellZoomAccuracy, ::testing::Values(15.0, 37.5, 60.0),
+INSTANTIATE_TEST_SUITE_P(Zooms, CornellZoomAccuracy, ::testing::Values(11.0, 12.0, 15.0, 35.5, 60.0),
                          [](const ::testing::TestParamInfo<double>& param_info) {
                            return "zoom" + std::to_string(static_cast<int>(param_info.param));
                          });

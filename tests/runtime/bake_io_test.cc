@@ -176,12 +176,12 @@ TEST_F(BakeIoTest, SingleBitFlipsAreRejected) {
 TEST_F(BakeIoTest, NewerVersionIsUnsupportedAndVersionZeroCorrupt) {
   Container c = Split(file_);
   EXPECT_EQ(c.version, 3u);  // with a hierarchy
-  c.version = 7;
+  c.version = 8;
   Bake out;
   const Bytes newer = Join(c);
   Status st = ParseBake(newer.data(), newer.size(), &out);
   EXPECT_EQ(st.code(), StatusCode::kUnsupported) << st.ToString();
-  EXPECT_TRUE(Contains(st.message(), "version 7")) << st.message();
+  EXPECT_TRUE(Contains(st.message(), "version 8")) << st.message();
   c.version = 0;
   ExpectCorrupt(Join(c), "version 0");
 }
@@ -492,8 +492,8 @@ TEST_F(BakeIoTest, WriteRejectsInconsistentBakesAndKeepsTheOldFile) {
        [](Bake* b) { b->luminaires[1].receivers[0].basis_scale.resize(27); }},
       {"basis_scale[term 2][channel 0]: mantissa 12 is outside",
        [](Bake* b) { b->luminaires[0].receivers[0].basis_scale[6].mantissa = 12; }},
-      {"luminaire 0: SH degree 17 exceeds the maximum 16",
-       [](Bake* b) { b->luminaires[0].sh_degree = 17; }},
+      {"luminaire 0: SH degree 23 exceeds the maximum 22",
+       [](Bake* b) { b->luminaires[0].sh_degree = 23; }},
       {"luminaire 1: LID has 2 samples", [](Bake* b) { b->luminaires[1].lid.candela.resize(2); }},
       {"luminaire 1: name is 300 bytes", [](Bake* b) { b->luminaires[1].name.assign(300, 'x'); }},
       {"luminaire 1: name is not UTF-8",

@@ -7,14 +7,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "compressed_recombine.h"
 #include "compressed_recombine_avx2.h"
+#include "compressed_recombine_vnni.h"
 #include "recombine_avx2.h"
+#include "recombine_dispatch.h"
 #include "relight/base/fixed_ops.h"
 #include "relight/base/sh_index.h"
 
@@ -61,10 +65,18 @@ void Fill(std::mt19937* rng, uint32_t n, uint32_t r, bool extreme, std::vector<i
   }
 }
 
-TEST(CompressedClusterTest, ScalarIsExactAndAvx2BitIdenticalOnEveryTail) {
+// Every vector path (AVX2, AVX-VNNI, AVX-512 VNNI: those this CPU has) called
+// directly, and CompressedClusterQ12 under every cap (recombine_dispatch.h),
+// against the exact reference: lengths around the 16- and 32-receiver steps.
+TEST(CompressedClusterTest, ScalarIsExactAndEveryVectorPathBitIdenticalOnEveryTail) {
+  for (int l = 0; l <= static_cast<int>(SimdLevel::kAvx512Vnni); ++l) {
+    const SimdLevel level = static_cast<SimdLevel>(l);
+    std::printf("%s: %s\n", SimdLevelName(level), CpuSupportsSimdLevel(level) ? "tested" : "not on this CPU");
+  }
+  const SimdLevel before = ActiveSimdLevel();  // restored after: a cap is process-wide
   std::mt19937 rng(5);
   for (uint32_t r : {0u, 1u, 2u, 3u, 5u, 8u, 16u, 17u, 32u, 64u}) {
-    for (uint32_t n : {1u, 3u, 8u, 11u, 16u, 35u, 100u}) {
+    for (uint32_t n : {1u, 3u, 8u, 11u, 16u, 17u, 31u, 32u, 35u, 48u, 63u, 100u, 129u}) {
       for (bool extreme : {false, true}) {
         SCOPED_TRACE(testing::Message() << "r " << r << " n " << n << " extreme " << extreme);
         std::vector<int16_t> w;
@@ -72,17 +84,36 @@ TEST(CompressedClusterTest, ScalarIsExactAndAvx2BitIdenticalOnEveryTail) {
         Fill(&rng, n, r, extreme, &w, &m);
         const bool vector_path = m.shift[0] >= 0 && m.shift[1] >= 0 && m.shift[2] >= 0;
         const std::vector<int32_t> want = Reference(w, n, r, m);
-        std::vector<int32_t> scalar(size_t{n} * 3, 0x5A5A5A5A), any(size_t{n} * 3, 0x5A5A5A5A);
+        std::vector<int32_t> scalar(size_t{n} * 3, 0x5A5A5A5A);
         CompressedClusterScalarQ12(w.data(), n, r, m, scalar.data());
         EXPECT_EQ(scalar, want);
-        CompressedClusterQ12(w.data(), n, r, m, any.data());
-        EXPECT_EQ(any, want);
-        if (__builtin_cpu_supports("avx2") && n >= 16 && vector_path) {
+        for (int l = 0; l <= static_cast<int>(SimdLevel::kAvx512Vnni); ++l) {
+          SetSimdLevelCap(static_cast<SimdLevel>(l));
+          std::vector<int32_t> any(size_t{n} * 3, 0x5A5A5A5A);
+          CompressedClusterQ12(w.data(), n, r, m, any.data());
+          EXPECT_EQ(any, want) << "cap " << SimdLevelName(static_cast<SimdLevel>(l));
+        }
+        SetSimdLevelCap(before);
+        if (!vector_path) continue;
+        // The 16-receiver bodies leave the tail (n % 16) untouched.
+        const size_t done = size_t{n - n % 16} * 3;
+        using Body = void (*)(const int16_t*, uint32_t, uint32_t, const ClusterMultipliers&, int32_t*);
+        const std::pair<SimdLevel, Body> bodies[] = {{SimdLevel::kAvx2, CompressedClusterAvx2Q12},
+                                                     {SimdLevel::kAvxVnni, CompressedClusterAvxVnniQ12}};
+        for (const auto& [level, body] : bodies) {
+          if (!CpuSupportsSimdLevel(level) || n < 16) continue;
           std::vector<int32_t> vec(size_t{n} * 3, 0x5A5A5A5A);
-          CompressedClusterAvx2Q12(w.data(), n, r, m, vec.data());
-          const size_t done = size_t{n - n % 16} * 3;
-          EXPECT_TRUE(std::equal(vec.begin(), vec.begin() + static_cast<long>(done), want.begin()));
-          EXPECT_EQ(vec[done < vec.size() ? done : 0], done < vec.size() ? 0x5A5A5A5A : want[0]);
+          body(w.data(), n, r, m, vec.data());
+          EXPECT_TRUE(std::equal(vec.begin(), vec.begin() + static_cast<long>(done), want.begin()))
+              << SimdLevelName(level);
+          for (size_t e = done; e < vec.size(); ++e) EXPECT_EQ(vec[e], 0x5A5A5A5A) << SimdLevelName(level);
+        }
+        // The 512-bit body does every receiver (masked last step) and writes nothing past them.
+        if (CpuSupportsSimdLevel(SimdLevel::kAvx512Vnni)) {
+          std::vector<int32_t> vec(size_t{n} * 3 + 64, 0x5A5A5A5A);
+          CompressedClusterAvx512VnniQ12(w.data(), n, r, m, vec.data());
+          EXPECT_TRUE(std::equal(want.begin(), want.end(), vec.begin()));
+          for (size_t e = want.size(); e < vec.size(); ++e) EXPECT_EQ(vec[e], 0x5A5A5A5A);
         }
       }
     }

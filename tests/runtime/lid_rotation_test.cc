@@ -163,9 +163,11 @@ TEST(ShRotationQ30, MatchesFloat64Recurrence) {
     const std::vector<double> ref = baker::ShRotationMatrices(kMaxShDegree, rf);
     for (size_t k = 0; k < ref.size(); ++k) worst = std::max(worst, std::abs(d[k] / kQ30 - ref[k]));
   }
-  std::printf("SH rotation up to l = 16: max |Q1.30 - float64| = %.2e (%.1f LSB)\n", worst,
-              worst * kQ30);
-  EXPECT_LT(worst, 2e-8);
+  std::printf("SH rotation up to l = %d: max |Q1.30 - float64| = %.2e (%.1f LSB)\n", kMaxShDegree,
+              worst, worst * kQ30);
+  // The recurrence's rounding grows with the degree: measured 2.8e-8 (30 LSB)
+  // at l = 20 and 4.8e-8 (51 LSB) at l = 22; the bound had been 2e-8 at l = 16.
+  EXPECT_LT(worst, 6e-8);
 }
 
 TEST(ShRotationQ30, RotatedCoefficientsMatchFloat64) {

@@ -12,6 +12,7 @@
 #include "engine_test_support.h"
 #include "recombine.h"
 #include "recombine_avx2.h"
+#include "recombine_dispatch.h"
 #include "relight/baker/photometry.h"
 #include "relight/engine/sh_eval.h"
 #include "relight/base/sh_index.h"
@@ -205,7 +206,7 @@ TEST(RecombineQ12, SaturatesExactlyAndNeverWraps) {
     EXPECT_EQ(out[1], kMax - 1);  // 2^32 - 4 -> 2^31 - 2
     EXPECT_EQ(out[2], kMin);      // -2^32 -> -2^31 exactly
   }
-  // The largest possible accumulator: 289 terms of 32767 x (2^31 - 1), both signs.
+  // The largest possible accumulator: 529 terms (kMaxShDegree 22) of 32767 x (2^31 - 1), both signs.
   {
     const uint32_t terms = ShTermCount(kMaxShDegree);
     std::vector<int16_t> q(terms * 3);
@@ -218,7 +219,7 @@ TEST(RecombineQ12, SaturatesExactlyAndNeverWraps) {
       k[t * 3 + 1] = kMax;
       k[t * 3 + 2] = -kMax;
     }
-    // |sum| = 289 x 32767 x (2^31 - 1) ~ 2^54.2: saturates for shifts up to 23.
+    // |sum| = 529 x 32767 x (2^31 - 1) ~ 2^55.1: saturates for shifts up to 24.
     for (int shift : {0, 23, 24, 31, 62}) {
       RecombineQ12(q.data(), terms, 1, k.data(), shift, scratch, 12, out);
       for (uint32_t c = 0; c < 3; ++c) {
@@ -235,11 +236,16 @@ TEST(RecombineQ12, SaturatesExactlyAndNeverWraps) {
 // The AVX2 path (used when the CPU has it and |k| < 2^24) must equal the
 // exact int64 sum bit for bit: extreme values, odd term counts, zero terms
 // skipped, receiver counts with every tail length, several block sizes.
+// Every level this CPU has (recombine_dispatch.h: scalar, AVX2, AVX-512 VNNI)
+// is run through SetSimdLevelCap.
 TEST(RecombineQ12, VectorPathIsBitIdenticalToExactSum) {
   std::printf("AVX2 path %s on this CPU\n", CpuHasAvx2() ? "active" : "NOT available (scalar only)");
+  std::printf("AVX-512 VNNI path %s on this CPU\n",
+              CpuSupportsSimdLevel(SimdLevel::kAvx512Vnni) ? "tested" : "NOT available");
+  const SimdLevel before = ActiveSimdLevel();  // restored after: a cap is process-wide
   std::mt19937 rng(4242);
   const int32_t kMaxK = (int32_t{1} << kVectorMultiplierBits) - 1;
-  for (uint32_t receivers : {1u, 5u, 6u, 11u, 16u, 37u, 100u, 513u}) {
+  for (uint32_t receivers : {1u, 5u, 6u, 11u, 16u, 21u, 32u, 37u, 100u, 513u}) {
     for (uint32_t terms : {1u, 2u, 3u, 9u, 17u, 81u}) {
       std::vector<int16_t> basis(static_cast<size_t>(terms) * receivers * 3);
       std::uniform_int_distribution<int> qd(-32768, 32767);
@@ -253,21 +259,26 @@ TEST(RecombineQ12, VectorPathIsBitIdenticalToExactSum) {
       for (int shift : {0, 13, 31}) {
         std::vector<int32_t> out(receivers * 3);
         for (uint32_t scratch_len : {6u, 48u, 3u * 512u}) {
-          std::vector<int64_t> scratch(scratch_len);
-          RecombineQ12(basis.data(), terms, receivers, k.data(), shift, scratch.data(), scratch_len, out.data());
-          for (uint32_t e = 0; e < receivers * 3; ++e) {
-            int64_t sum = 0;
-            for (uint32_t t = 0; t < terms; ++t) sum += int64_t{basis[(t * receivers) * 3 + e]} * k[t * 3 + e % 3];
-            const int64_t half = shift > 0 ? int64_t{1} << (shift - 1) : 0;
-            const int64_t v = (sum + half) >> shift;
-            const int64_t want = std::min<int64_t>(std::max<int64_t>(v, INT32_MIN), INT32_MAX);
-            ASSERT_EQ(out[e], want) << "receivers " << receivers << " terms " << terms << " shift " << shift
-                                    << " scratch " << scratch_len << " element " << e;
+          for (int level = 0; level <= static_cast<int>(SimdLevel::kAvx512Vnni); ++level) {
+            SetSimdLevelCap(static_cast<SimdLevel>(level));
+            std::vector<int64_t> scratch(scratch_len);
+            RecombineQ12(basis.data(), terms, receivers, k.data(), shift, scratch.data(), scratch_len, out.data());
+            for (uint32_t e = 0; e < receivers * 3; ++e) {
+              int64_t sum = 0;
+              for (uint32_t t = 0; t < terms; ++t) sum += int64_t{basis[(t * receivers) * 3 + e]} * k[t * 3 + e % 3];
+              const int64_t half = shift > 0 ? int64_t{1} << (shift - 1) : 0;
+              const int64_t v = (sum + half) >> shift;
+              const int64_t want = std::min<int64_t>(std::max<int64_t>(v, INT32_MIN), INT32_MAX);
+              ASSERT_EQ(out[e], want) << "receivers " << receivers << " terms " << terms << " shift " << shift
+                                      << " scratch " << scratch_len << " element " << e << " level "
+                                      << SimdLevelName(static_cast<SimdLevel>(level));
+            }
           }
         }
       }
     }
   }
+  SetSimdLevelCap(before);
 }
 
 TEST(Weights, BeamAxisMatchesFloat) {

@@ -59,6 +59,11 @@ TEST(ShTablesQ60, SeedsMatchTheClosedForm) {
   EXPECT_NEAR(Real(t.seed_q60[0]) / std::ldexp(1.0, 60), 0.5 / std::sqrt(kPi), 1e-15);
   EXPECT_NEAR(Real(t.seed_q60[1]) / std::ldexp(1.0, 60), -std::sqrt(3 / (4 * kPi)), 1e-15);
   EXPECT_NEAR(Real(t.a_q60[16][15]) / std::ldexp(1.0, 60), std::sqrt(33.0), 1e-15);
+  // a_l0 = sqrt((4 l^2 - 1) / l^2): from degree 17 on its denominator passes
+  // 256, where the Q60 ratio once overflowed.
+  const double l = kMaxShDegree;
+  EXPECT_NEAR(Real(t.a_q60[kMaxShDegree][0]) / std::ldexp(1.0, 60), std::sqrt((4 * l * l - 1) / (l * l)), 1e-15);
+  EXPECT_NEAR(Real(t.a_q60[kMaxShDegree][kMaxShDegree - 1]) / std::ldexp(1.0, 60), std::sqrt(2 * l + 1), 1e-15);
   EXPECT_NEAR(Real(t.four_pi_over_q58[0]) / std::ldexp(1.0, 58), 4 * kPi, 1e-14);
 }
 

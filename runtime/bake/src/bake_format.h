@@ -1,4 +1,4 @@
-// On-disk layout of a bake file, format version 6: the constants the writer
+// On-disk layout of a bake file, format version 7: the constants the writer
 // and the reader share. docs/bake-format.md is the specification; keep the
 // two in step. Private to the runtime.
 #pragma once
@@ -15,7 +15,7 @@ namespace relight::bake_format {
 
 // --- File header (28 bytes) and table of contents (36 bytes per section).
 inline constexpr uint8_t kMagic[8] = {'R', 'E', 'L', 'I', 'G', 'H', 'T', '\0'};
-inline constexpr uint32_t kVersion = 6;
+inline constexpr uint32_t kVersion = 7;
 // Version 1 files still read: their LUMI sections end after the LID samples
 // (no orientation, ranges or (C, gamma) table; defaults apply).
 inline constexpr uint32_t kOldestVersion = 1;
@@ -32,6 +32,12 @@ inline constexpr uint32_t kFirstVersionWithCompressed = 5;
 // Version 6: a GLNK section (links from the nodes to the grid points) may
 // follow LINK. Written only when the hierarchy has them.
 inline constexpr uint32_t kFirstVersionWithGridLinks = 6;
+// Version 7: a luminaire's SH degree may exceed 16 (up to kMaxShDegree, 22:
+// narrow zooms, issue 12). Nothing else changed, so the writer stamps it only
+// when some degree does; a version 6 reader then stops at the version, not at
+// a degree it would call corrupt.
+inline constexpr uint32_t kFirstVersionWithHighDegree = 7;
+inline constexpr int kMaxShDegreeBeforeVersion7 = 16;
 inline constexpr size_t kVersionOffset = 8;
 inline constexpr size_t kSectionCountOffset = 12;
 inline constexpr size_t kFileSizeOffset = 16;

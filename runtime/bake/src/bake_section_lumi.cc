@@ -122,6 +122,10 @@ Status DecodeLuminaire(ContainerReader* in, const Counts& counts, uint32_t l, Ba
   RELIGHT_RETURN_IF_ERROR(in->Finish(r, label));
   const std::string e = CheckLuminaire(lum);
   if (!e.empty()) return in->Corrupt(label, e);
+  if (lum.sh_degree > kMaxShDegreeBeforeVersion7 && in->version() < kFirstVersionWithHighDegree) {
+    return in->Corrupt(label, StrFormat("SH degree %u needs format version %u, the file has %u", lum.sh_degree,
+                                        kFirstVersionWithHighDegree, in->version()));
+  }
   bake->luminaires.push_back(std::move(lum));
   return Status::Ok();
 }

@@ -28,6 +28,9 @@ uint32_t SectionCount(const Bake& bake) {
 
 // The lowest version that holds the bake, so older readers read what they can.
 uint32_t FileVersion(const Bake& bake) {
+  for (const BakeLuminaire& lum : bake.luminaires) {
+    if (lum.sh_degree > kMaxShDegreeBeforeVersion7) return kFirstVersionWithHighDegree;
+  }
   if (bake.hierarchy && bake.hierarchy->has_grid_links()) return kFirstVersionWithGridLinks;
   for (const BakeLuminaire& lum : bake.luminaires) {
     for (const BakeLightReceivers& rec : lum.receivers) {

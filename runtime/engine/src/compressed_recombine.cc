@@ -6,8 +6,9 @@
 #include <cstdint>
 
 #include "compressed_recombine_avx2.h"
+#include "compressed_recombine_vnni.h"
 #include "recombine.h"
-#include "recombine_avx2.h"
+#include "recombine_dispatch.h"
 #include "relight/base/status.h"
 #include "weights.h"
 
@@ -103,9 +104,20 @@ void CompressedClusterQ12(const int16_t* w, uint32_t n, uint32_t components,
                           const ClusterMultipliers& m, int32_t* out) {
   uint32_t done = 0;
   // Negative shifts (saturating left shifts) are rare: the scalar path takes them.
-  if (CpuHasAvx2() && n >= 16 && m.shift[0] >= 0 && m.shift[1] >= 0 && m.shift[2] >= 0) {
-    done = n - n % 16;
-    CompressedClusterAvx2Q12(w, n, components, m, out);
+  if (m.shift[0] >= 0 && m.shift[1] >= 0 && m.shift[2] >= 0) {
+    const SimdLevel level = ActiveSimdLevel();
+    if (level == SimdLevel::kAvx512Vnni) {
+      CompressedClusterAvx512VnniQ12(w, n, components, m, out);  // every receiver, tail masked
+      return;
+    }
+    if (level >= SimdLevel::kAvx2 && n >= 16) {
+      done = n - n % 16;
+      if (level == SimdLevel::kAvxVnni) {
+        CompressedClusterAvxVnniQ12(w, n, components, m, out);
+      } else {
+        CompressedClusterAvx2Q12(w, n, components, m, out);
+      }
+    }
   }
   // The tail: same integers on the scalar path, weights still at stride n.
   if (done < n) CompressedClusterTailQ12(w, done, n, components, m, out);

@@ -51,15 +51,15 @@ void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, Clust
 //   out    LightQ12: for shift >= 0, |mean| < 2^30 plus a shifted sum of at
 //          most 2^30 in magnitude: inside int32, never saturates; for
 //          shift < 0 (|v| < 2^62 in int64) saturated to int32.
-// The scalar and the AVX2 paths (compressed_recombine_avx2.h) compute these
-// same integers: bit-identical.
+// The scalar, AVX2 (compressed_recombine_avx2.h) and VNNI
+// (compressed_recombine_vnni.h) paths compute these same integers: bit-identical.
 void CompressedClusterScalarQ12(const int16_t* w, uint32_t n, uint32_t components,
                                 const ClusterMultipliers& m, int32_t* out);
 // Receivers [from, n) of the same cluster (n and the weights' stride as above).
 void CompressedClusterTailQ12(const int16_t* w, uint32_t from, uint32_t n, uint32_t components,
                               const ClusterMultipliers& m, int32_t* out);
-// Same, on the AVX2 path when the CPU has it (recombine_avx2.h CpuHasAvx2)
-// and every shift is >= 0.
+// Same, on the active vector path (recombine_dispatch.h: AVX-512 VNNI,
+// AVX-VNNI or AVX2) when every shift is >= 0.
 void CompressedClusterQ12(const int16_t* w, uint32_t n, uint32_t components,
                           const ClusterMultipliers& m, int32_t* out);
 

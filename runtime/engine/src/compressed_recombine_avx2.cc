@@ -6,33 +6,11 @@
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #include <immintrin.h>
 
+#include "compressed_recombine_interleave.h"
+
 namespace relight {
-namespace {
-
-// Two multipliers per int32 lane: K_j in the low 16 bits, K_{j+1} in the
-// high, the order _mm256_unpack*_epi16(w_j, w_{j+1}) puts the weights in.
-inline int32_t Pack(int16_t a, int16_t b) {
-  return static_cast<int32_t>((static_cast<uint32_t>(static_cast<uint16_t>(b)) << 16) |
-                              static_cast<uint16_t>(a));
-}
-
-// R, G, B of receivers 0..7 (one vector each) -> 24 interleaved int32:
-// each is turned so its lanes land where the output wants them, then blended.
-__attribute__((target("avx2"))) inline void StoreInterleaved(__m256i r, __m256i g, __m256i b,
-                                                            int32_t* out) {
-  const __m256i rp = _mm256_permutevar8x32_epi32(r, _mm256_setr_epi32(0, 3, 6, 1, 4, 7, 2, 5));
-  const __m256i gp = _mm256_permutevar8x32_epi32(g, _mm256_setr_epi32(5, 0, 3, 6, 1, 4, 7, 2));
-  const __m256i bp = _mm256_permutevar8x32_epi32(b, _mm256_setr_epi32(2, 5, 0, 3, 6, 1, 4, 7));
-  // Lane patterns: out0 = R G B R G B R G, out1 = B R G B R G B R, out2 = G B R G B R G B.
-  const __m256i o0 = _mm256_blend_epi32(_mm256_blend_epi32(rp, gp, 0x92), bp, 0x24);
-  const __m256i o1 = _mm256_blend_epi32(_mm256_blend_epi32(rp, gp, 0x24), bp, 0x49);
-  const __m256i o2 = _mm256_blend_epi32(_mm256_blend_epi32(rp, gp, 0x49), bp, 0x92);
-  _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), o0);
-  _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + 8), o1);
-  _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + 16), o2);
-}
-
-}  // namespace
+using cpca_simd::PackPair;
+using cpca_simd::StoreInterleaved;
 
 __attribute__((target("avx2"))) void CompressedClusterAvx2Q12(const int16_t* w, uint32_t n,
                                                               uint32_t components,
@@ -45,7 +23,7 @@ __attribute__((target("avx2"))) void CompressedClusterAvx2Q12(const int16_t* w, 
       const uint32_t j = 2 * p;
       // An odd count pairs the last component with a zero multiplier.
       const int16_t kb = j + 1 < components ? m.k[ch * components + j + 1] : int16_t{0};
-      k[ch][p] = _mm256_set1_epi32(Pack(m.k[ch * components + j], kb));
+      k[ch][p] = _mm256_set1_epi32(PackPair(m.k[ch * components + j], kb));
     }
   }
   __m256i half[3], mean[3];

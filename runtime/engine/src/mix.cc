@@ -4,7 +4,8 @@
 #include <cstddef>
 
 #include "mix_avx2.h"
-#include "recombine_avx2.h"
+#include "mix_avx512.h"
+#include "recombine_dispatch.h"
 #include "relight/base/fixed_ops.h"
 #include "relight/base/status.h"
 
@@ -24,7 +25,8 @@ void MixLuminairesQ12(const MixSource* sources, uint32_t source_count, uint32_t 
   RELIGHT_CHECK(scratch_len >= 3);
   const uint32_t block = scratch_len / 3;
   constexpr int64_t kHalf = int64_t{1} << 29;
-  const bool avx2 = CpuHasAvx2();  // the same values (mix_avx2.h)
+  const SimdLevel level = ActiveSimdLevel();  // the same values on every path
+  const bool avx512 = level == SimdLevel::kAvx512Vnni, avx2 = level >= SimdLevel::kAvx2;
   for (uint32_t r0 = 0; r0 < receiver_count; r0 += block) {
     const uint32_t n = receiver_count - r0 < block ? receiver_count - r0 : block;
     const size_t base = static_cast<size_t>(r0) * 3;
@@ -36,7 +38,11 @@ void MixLuminairesQ12(const MixSource* sources, uint32_t source_count, uint32_t 
       const int32_t* a = s.a + base;
       const int32_t* b = s.b != nullptr ? s.b + base : nullptr;
       if (avx2 && b == nullptr) {  // a + b may pass int32: only a alone in vectors
-        MixAddAvx2(a, g, 3 * n, scratch);
+        if (avx512) {
+          MixAddAvx512(a, g, 3 * n, scratch);
+        } else {
+          MixAddAvx2(a, g, 3 * n, scratch);
+        }
         continue;
       }
       for (uint32_t i = 0; i < n; ++i) {
@@ -46,7 +52,9 @@ void MixLuminairesQ12(const MixSource* sources, uint32_t source_count, uint32_t 
         }
       }
     }
-    if (avx2) {
+    if (avx512) {
+      SaturateAvx512(scratch, 3 * n, out + base);
+    } else if (avx2) {
       SaturateAvx2(scratch, 3 * n, out + base);
     } else {
       for (uint32_t i = 0; i < 3 * n; ++i) out[base + i] = SaturateI32(scratch[i]);

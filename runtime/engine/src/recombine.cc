@@ -4,6 +4,8 @@
 #include <cstddef>
 
 #include "recombine_avx2.h"
+#include "recombine_dispatch.h"
+#include "recombine_vnni.h"
 #include "relight/base/sh_index.h"
 #include "relight/base/status.h"
 #include "relight/base/fixed_ops.h"
@@ -33,18 +35,25 @@ inline void FinishBlock(const int64_t* acc, uint32_t elements, int shift, int32_
   for (uint32_t i = 0; i < elements; ++i) dst[i] = SaturateI32((acc[i] + half) >> shift);
 }
 
-// The vector path: AVX2 multiply-adds over the active terms, blocks of
-// scratch_len / 3 receivers (one exact int64 sum per element).
+// The vector path: AVX2 multiply-adds (or AVX-512 vpdpwssd, the same sums)
+// over the active terms, blocks of scratch_len / 3 receivers (one exact
+// int64 sum per element).
 void RecombineVector(const int16_t* basis, uint32_t receiver_count, const uint16_t* terms,
                      uint32_t term_count, const int32_t* k, int shift, int64_t* scratch,
                      uint32_t scratch_len, int32_t* out) {
   const uint32_t block = scratch_len / 3;
+  const bool avx512 = ActiveSimdLevel() == SimdLevel::kAvx512Vnni;
   TermPairVectors pairs[kMaxTermPairs];  // 56 KiB of stack, built once per call
   BuildTermPairsAvx2(terms, term_count, k, pairs);
   for (uint32_t r0 = 0; r0 < receiver_count; r0 += block) {
     const uint32_t n = receiver_count - r0 < block ? receiver_count - r0 : block;
-    AccumulateTermsAvx2(basis + static_cast<size_t>(r0) * 3, static_cast<uint64_t>(receiver_count) * 3, terms,
-                        term_count, k, pairs, 3 * n, scratch);
+    const int16_t* rows = basis + static_cast<size_t>(r0) * 3;
+    const uint64_t stride = static_cast<uint64_t>(receiver_count) * 3;
+    if (avx512) {
+      AccumulateTermsAvx512Vnni(rows, stride, terms, term_count, pairs, 3 * n, scratch);
+    } else {
+      AccumulateTermsAvx2(rows, stride, terms, term_count, k, pairs, 3 * n, scratch);
+    }
     FinishBlock(scratch, 3 * n, shift, out + static_cast<size_t>(r0) * 3);
   }
 }

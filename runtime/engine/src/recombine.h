@@ -21,8 +21,8 @@ inline constexpr uint32_t kRecombineBlockReceivers = 2048;
 // Scaling and overflow:
 //   basis  int16 q, |q| <= 2^15 (the whole int16 range is safe)
 //   k      int32, |k| < 2^31 (ChannelMultipliersQ12 guarantees it)
-//   acc    int64: each product < 2^15 * 2^31 = 2^46; at most 289 terms
-//          (kMaxShDegree = 16) < 2^9, so |sum| < 2^55: 8 guard bits, no
+//   acc    int64: each product < 2^15 * 2^31 = 2^46; at most 529 terms
+//          (kMaxShDegree = 22) < 2^10, so |sum| < 2^56: 7 guard bits, no
 //          overflow possible for any input.
 //   out    LightQ12 int32: the sum shifted right by `shift` (0..62) with
 //          round-to-nearest (halves up), then saturated to [INT32_MIN,

@@ -3,8 +3,6 @@
 // extension to int64.
 #include "recombine_avx2.h"
 
-#include <cstdlib>
-
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #include <immintrin.h>
 #define RELIGHT_HAVE_AVX2_PATH 1
@@ -13,20 +11,6 @@
 namespace relight {
 
 #ifdef RELIGHT_HAVE_AVX2_PATH
-
-namespace {
-bool ForceScalarFromEnvironment() {
-  const char* v = std::getenv("RELIGHT_FORCE_SCALAR");
-  return v != nullptr && v[0] != '\0' && !(v[0] == '0' && v[1] == '\0');
-}
-}  // namespace
-
-// RELIGHT_FORCE_SCALAR=1 in the environment keeps RecombineQ12 on its scalar
-// path, so both paths can be compared on one machine (relight-replay-hash).
-bool CpuHasAvx2() {
-  static const bool has = __builtin_cpu_supports("avx2") && !ForceScalarFromEnvironment();
-  return has;
-}
 
 namespace {
 
@@ -168,7 +152,6 @@ __attribute__((target("avx2"))) void AccumulateTermsAvx2(const int16_t* basis, u
 
 #else  // no AVX2 path on this target: RecombineQ12 stays scalar
 
-bool CpuHasAvx2() { return false; }
 void BuildTermPairsAvx2(const uint16_t*, uint32_t, const int32_t*, TermPairVectors*) {}
 void AccumulateTermsAvx2(const int16_t*, uint64_t, const uint16_t*, uint32_t, const int32_t*,
                          const TermPairVectors*, uint32_t, int64_t*) {}

@@ -6,6 +6,8 @@
 
 #include <cstdint>
 
+#include "relight/base/sh_index.h"
+
 namespace relight {
 
 // Multipliers the vector path accepts: |k| < 2^kVectorMultiplierBits (each k
@@ -13,8 +15,8 @@ namespace relight {
 // multiply-adds). RecombineQ12 falls back to the scalar path otherwise.
 inline constexpr int kVectorMultiplierBits = 24;
 
-// True when the CPU runs AVX2 and RELIGHT_FORCE_SCALAR is unset, empty or
-// "0" (checked once).
+// True when the active level (recombine_dispatch.h: the CPU's, capped by
+// RELIGHT_FORCE_SCALAR, RELIGHT_SIMD or SetSimdLevelCap) is AVX2 or above.
 bool CpuHasAvx2();
 
 // The multiplier vectors of one term pair, built once per call and reused for
@@ -22,7 +24,7 @@ bool CpuHasAvx2();
 struct alignas(32) TermPairVectors {
   uint8_t bytes[12 * 32];
 };
-inline constexpr uint32_t kMaxTermPairs = (289 + 1) / 2;
+inline constexpr uint32_t kMaxTermPairs = (ShTermCount(kMaxShDegree) + 1) / 2;
 
 // Builds (term_count + 1) / 2 pair vectors for the given terms and multipliers.
 void BuildTermPairsAvx2(const uint16_t* terms, uint32_t term_count, const int32_t* k, TermPairVectors* pairs);
@@ -35,7 +37,7 @@ void BuildTermPairsAvx2(const uint16_t* terms, uint32_t term_count, const int32_
 // kl in [0, 2^12). _mm256_madd_epi16 forms q_a*kh_a + q_b*kh_b for a term
 // pair in int32 (< 2 * 2^15 * 2^12 = 2^28); four pairs (8 terms) are summed
 // in int32 (< 2^30) before widening to int64 as hi * 2^12 + lo; the total
-// stays below 289 * 2^27 * 2^12 * 2 < 2^48.
+// stays below 529 * 2^27 * 2^12 * 2 < 2^50 (529 terms at kMaxShDegree = 22).
 void AccumulateTermsAvx2(const int16_t* basis, uint64_t stride, const uint16_t* terms, uint32_t term_count,
                          const int32_t* k, const TermPairVectors* pairs, uint32_t elements, int64_t* acc);
 

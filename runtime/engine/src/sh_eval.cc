@@ -4,8 +4,9 @@
 // q_l^m a polynomial in z from normalised recurrences. No trig, no pole.
 //
 // Scaling and overflow: inputs Q1.30 are widened to Q3.60; C_m, S_m in Q3.60
-// (|.| <= 1 for a unit vector); q_l^m in Q13.50 because q_l^m itself (without
-// the sin^m factor) reaches ~950 near the poles at l = 16. Every product is
+// (|.| <= 1 for a unit vector); q_l^m in Q15.48 because q_l^m itself (without
+// the sin^m factor) reaches ~950 near the poles at l = 16 and ~16900 at
+// l = 22 (kMaxShDegree; Q15.48 holds 32768). Every product is
 // int64 x int64 -> int128 (< 2^127), rounded back to int64 with saturation,
 // so a non-unit input gives wrong numbers, never undefined behaviour. The
 // Q1.30 outputs round once: error <= 1 LSB at every degree (tests measure it).
@@ -17,13 +18,17 @@
 namespace relight {
 namespace {
 
+constexpr int kQ = 48;  // fraction bits of q_l^m (Q15.48, see above)
 
-// sqrt(num/den) in Q60, for num/den < 64 (floor; error < 1 ulp of Q60).
+// sqrt(num/den) in Q60, for num/den < 64, num and den < 2^32 (floor; error
+// < 1 ulp of Q60).
 int64_t SqrtRatioQ60(uint64_t num, uint64_t den) {
-  // floor(num * 2^120 / den) without overflowing 128 bits.
-  const UInt128 whole = static_cast<UInt128>(num / den) << 120;
-  const UInt128 frac = (static_cast<UInt128>(num % den) << 120) / den;
-  return static_cast<int64_t>(ISqrt128(whole + frac));
+  // floor(num * 2^120 / den) without overflowing 128 bits, in two steps of
+  // 2^60: the remainder is < den, so (rem << 60) < 2^92. (One step of 2^120
+  // on num % den overflowed once den > 256, i.e. from degree 17 on.)
+  const UInt128 hi = (static_cast<UInt128>(num) << 60) / den;  // < 2^66
+  const UInt128 rem = (static_cast<UInt128>(num) << 60) % den;
+  return static_cast<int64_t>(ISqrt128((hi << 60) + (rem << 60) / den));
 }
 
 int64_t MulQ60(int64_t a, int64_t b) {
@@ -50,8 +55,8 @@ void ForEachShQ60(const ShTables& tables, int degree, const int32_t dir_q30[3], 
       s = SaturateI64(RoundShift(static_cast<Int128>(x) * s + static_cast<Int128>(y) * c, 60));
       c = c_next;
     }
-    int64_t q_prev = 0;                                                    // q_{l-1}^m, Q50
-    int64_t q = static_cast<int64_t>(RoundShift(tables.seed_q60[m], 10));  // q_m^m, Q50
+    int64_t q_prev = 0;                                                         // q_{l-1}^m, Q48
+    int64_t q = static_cast<int64_t>(RoundShift(tables.seed_q60[m], 60 - kQ));  // q_m^m, Q48
     for (int l = m; l <= degree; ++l) {
       if (l > m) {
         const Int128 zq = RoundShift(static_cast<Int128>(z) * q, 60);
@@ -63,10 +68,10 @@ void ForEachShQ60(const ShTables& tables, int degree, const int32_t dir_q30[3], 
         q = q_next;
       }
       if (m == 0) {
-        emit(ShIndex(l, 0), l, SaturateI64(static_cast<Int128>(q) * 1024));  // Q50 -> Q60
+        emit(ShIndex(l, 0), l, SaturateI64(static_cast<Int128>(q) * (int64_t{1} << (60 - kQ))));  // Q48 -> Q60
       } else {
-        emit(ShIndex(l, m), l, SaturateI64(RoundShift(static_cast<Int128>(q) * c, 50)));
-        emit(ShIndex(l, -m), l, SaturateI64(RoundShift(static_cast<Int128>(q) * s, 50)));
+        emit(ShIndex(l, m), l, SaturateI64(RoundShift(static_cast<Int128>(q) * c, kQ)));
+        emit(ShIndex(l, -m), l, SaturateI64(RoundShift(static_cast<Int128>(q) * s, kQ)));
       }
     }
   }

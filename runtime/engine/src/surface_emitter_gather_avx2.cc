@@ -64,11 +64,23 @@ __attribute__((target("avx2"))) void GatherInnerAvx2(const EmitterGatherEntry* e
   Store3(sv, v);
 }
 
+__attribute__((target("avx2"))) void GatherMomentAvx2(const EmitterMomentEntry* e, uint32_t count,
+                                                      const int32_t* moment, int64_t m[3]) {
+  __m256i su = _mm256_setzero_si256(), sv = _mm256_setzero_si256();
+  for (uint32_t i = 0; i < count; ++i) {
+    const int32_t* row = moment + 8 * size_t{e[i].source};
+    su = _mm256_add_epi64(su, _mm256_mul_epi32(Source(row, 0), _mm256_set1_epi32(e[i].wu)));
+    sv = _mm256_add_epi64(sv, _mm256_mul_epi32(Source(row + 4, 0), _mm256_set1_epi32(e[i].wv)));
+  }
+  Store3(_mm256_add_epi64(su, sv), m);
+}
+
 #else  // no AVX2 path on this target: the solve stays scalar
 
 void GatherLeafAvx2(const EmitterGatherEntry*, uint32_t, const int32_t*, int64_t*) {}
 void GatherInnerAvx2(const EmitterGatherEntry*, const int32_t*, uint32_t, const int32_t*, int64_t*, int64_t*,
                      int64_t*) {}
+void GatherMomentAvx2(const EmitterMomentEntry*, uint32_t, const int32_t*, int64_t*) {}
 
 #endif
 

@@ -2,16 +2,21 @@
 //
 // Scaling and overflow: B (exitance) Q32 int64, at most ~2^36 for unit
 // emission (B <= S / (1 - rho)). Gathers read B as int32 Q24 (the "view",
-// saturated to +-view_limit_): f (UQ0.32) x view is < 2^63 summed over a
-// node's links because Init sets view_limit_ = (2^63 - 1) / (the largest sum
-// over a node's links of f, |g_u| or |g_v|), capped at 2^31 - 1; a bake's
-// factors sum to about 1 per node, so the cap is what applies and unit
-// emission reads exactly up to B = 128. f x view is Q56, shifted to Q32;
+// saturated to +-view_limit_) and an inner source's first moment m as int32
+// Q20 x metres (saturated the same). A gather's exitance sum is
+// sum f x view (UQ0.32 x Q24 = Q56) + 2^t sum (w_u m_u + w_v m_v), the
+// moment weights w = f g_rev / f_rev stored as int32 Q(36 - t) per metre
+// (t chosen at Init so the largest fits), so the moment products are
+// Q(56 - t) and x 2^t is Q56 too. Init sets view_limit_ = (2^63 - 1) / (the
+// largest over the nodes of sum f + 2^t sum (|w_u| + |w_v|), sum |g_u| or
+// sum |g_v|), capped at 2^31 - 1, so no sum reaches 2^63; a bake's factors
+// sum to about 1 per node, so the cap is what applies and unit emission
+// reads exactly up to B = 128 (m up to 2048 x m). Q56 is shifted to Q32;
 // g (Q8.23) x view is Q47, shifted to Q32 per metre. Moving a gradient's
 // term between a node's centroid and the surface origin multiplies Q32 by
 // Q16.16 metres in Int128. Reflectance UQ32 (2^32 = 1) x irradiance Q32 ->
-// Int128, rounded back to Q32. Pull: child weights UQ32 x B Q32, summed in
-// Int128.
+// Int128, rounded back to Q32. Pull: child weights UQ32 x (B Q32, m Q32 x
+// m + B x (child centre - parent centre) Q16 m >> 16), summed in Int128.
 #include "surface_emitter_solve.h"
 
 #include <cstring>
@@ -19,6 +24,8 @@
 #include "relight/base/fixed_ops.h"
 #include "surface_emitter_frame.h"
 #include "surface_emitter_gather_avx2.h"
+#include "surface_emitter_extrapolate.h"
+#include "surface_emitter_moments.h"
 
 namespace relight {
 namespace {
@@ -30,6 +37,11 @@ int64_t GradientTerm(int64_t gu, int64_t gv, const int32_t* uv_q16) {
 }
 
 constexpr int kViewShift = kExitanceFracBits - kGatherFracBits;
+// The moment view, Q20 x metres: 16 m of headroom over the exitance view.
+constexpr int kMomentViewShift = kViewShift + 4;
+// Moment weights before the shift t: Q36 per metre (Q36 x Q20 = Q56).
+static_assert(kMomentWeightFracBits + kExitanceFracBits - kMomentViewShift == kGatherFracBits + 32,
+              "moment products and factor products must both be Q56");
 
 // The scalar gathers (surface_emitter_gather_avx2.h has the contract).
 void GatherLeaf(const EmitterGatherEntry* e, uint32_t count, const int32_t* view, int64_t a[3]) {
@@ -75,6 +87,7 @@ struct HierarchySolveQ32::Sweep {
   const int64_t* extra;
   int64_t* b;
   int64_t change[kEmitterSolveBlocks];
+  Int128 l1[kEmitterSolveBlocks][3];  // sum over the leaves of |change|, per channel
   int64_t peak[kEmitterSolveBlocks];
 };
 
@@ -107,6 +120,7 @@ Status HierarchySolveQ32::Init(const Bake& bake) {
     if (h.link_f_pq[i] != 0) add(h.link_p[i], h.link_q[i], h.link_f_pq[i], &h.link_g_pq[2 * size_t{i}]);
     if (h.link_f_qp[i] != 0) add(h.link_q[i], h.link_p[i], h.link_f_qp[i], &h.link_g_qp[2 * size_t{i}]);
   }
+  BuildEmitterMoments(h, &moments_);
   // The largest sum a gather can multiply the view by (see the top comment).
   uint64_t row_max = 1;
   bool vector_ok = true;
@@ -116,6 +130,8 @@ Status HierarchySolveQ32::Init(const Bake& bake) {
       f += gather_[e].f;
       if (gather_[e].f >= (uint32_t{1} << 31)) vector_ok = false;  // _mm256_mul_epi32 is signed
     }
+    const uint64_t w = EmitterMomentRowSum(moments_, k);  // <= 2^63 - 1
+    f = f + w < f || f + w > static_cast<uint64_t>(INT64_MAX) ? static_cast<uint64_t>(INT64_MAX) : f + w;
     for (uint32_t e = 2 * gradient_offsets_[k]; e < 2 * gradient_offsets_[k + 1]; e += 2) {
       du += static_cast<uint64_t>(gradient_[e] < 0 ? -int64_t{gradient_[e]} : gradient_[e]);
       dv += static_cast<uint64_t>(gradient_[e + 1] < 0 ? -int64_t{gradient_[e + 1]} : gradient_[e + 1]);
@@ -163,7 +179,11 @@ Status HierarchySolveQ32::Init(const Bake& bake) {
   g0_.assign(size_t{n} * 3, 0);
   gu_.assign(size_t{n} * 3, 0);
   gv_.assign(size_t{n} * 3, 0);
+  delta_.assign(size_t{n} * 3, 0);
+  mu_.assign(size_t{n} * 3, 0);
+  mv_.assign(size_t{n} * 3, 0);
   for (std::vector<int32_t>& v : view_) v.assign(size_t{n} * 4, 0);
+  for (std::vector<int32_t>& v : moment_view_) v.assign(size_t{moments_.inner_before[n]} * 8, 0);
   return Status::Ok();
 }
 
@@ -172,18 +192,60 @@ int32_t HierarchySolveQ32::ToView(int64_t b_q32) const {
   return static_cast<int32_t>(v > view_limit_ ? view_limit_ : (v < -view_limit_ ? -view_limit_ : v));
 }
 
-void HierarchySolveQ32::Pull(uint32_t begin, uint32_t end, int64_t* b, int32_t* view) const {
+void HierarchySolveQ32::AddMoments(const EmitterMomentEntry* e, uint32_t count, const int32_t* moment,
+                                   int64_t a[3]) const {
+  int64_t m[3];
+  if (vector_) {
+    GatherMomentAvx2(e, count, moment, m);
+  } else {
+    GatherMoment(e, count, moment, m);
+  }
+  // Q(56 - t) x 2^t = Q56; Init's bound keeps a + this below 2^63
+  // (saturating all the same: a hostile bake must not reach overflow).
+  const Int128 scale = Int128{1} << moments_.shift;
+  for (int ch = 0; ch < 3; ++ch) a[ch] = AddSat64(a[ch], SaturateI64(static_cast<Int128>(m[ch]) * scale));
+}
+
+int32_t HierarchySolveQ32::ToMomentView(int64_t m_q32) const {
+  const int64_t v = RoundShiftSat64(m_q32, -kMomentViewShift);
+  return static_cast<int32_t>(v > view_limit_ ? view_limit_ : (v < -view_limit_ ? -view_limit_ : v));
+}
+
+void HierarchySolveQ32::SetView(uint32_t k, const int64_t* b, int32_t* view, int32_t* moment) const {
+  for (int ch = 0; ch < 3; ++ch) view[4 * size_t{k} + ch] = ToView(b[3 * size_t{k} + ch]);
+  if (h_->leaf(k)) return;
+  int32_t* row = &moment[8 * size_t{moments_.inner_before[k]}];
+  for (int ch = 0; ch < 3; ++ch) {
+    row[ch] = ToMomentView(mu_[3 * size_t{k} + ch]);
+    row[4 + ch] = ToMomentView(mv_[3 * size_t{k} + ch]);
+  }
+}
+
+void HierarchySolveQ32::Pull(uint32_t begin, uint32_t end, int64_t* b, int32_t* view, int32_t* moment) {
   const BakeHierarchy& h = *h_;
   for (uint32_t k = end; k-- > begin;) {  // children come after their parents
     if (h.leaf(k)) continue;
-    Int128 sum[3] = {0, 0, 0};
+    Int128 sum[3] = {0, 0, 0}, su[3] = {0, 0, 0}, sv[3] = {0, 0, 0};
     const uint32_t first = h.node_first_child[k];
-    for (uint32_t c = first; c < first + h.node_child_count[k]; ++c)
-      for (int ch = 0; ch < 3; ++ch) sum[ch] += static_cast<Int128>(child_weight_q32_[c]) * b[3 * size_t{c} + ch];
+    const int32_t* ck = &centre_uv_q16_[2 * size_t{k}];
+    for (uint32_t c = first; c < first + h.node_child_count[k]; ++c) {
+      const Int128 w = child_weight_q32_[c];
+      const int32_t* cc = &centre_uv_q16_[2 * size_t{c}];
+      const int64_t du = int64_t{cc[0]} - ck[0], dv = int64_t{cc[1]} - ck[1];  // Q16 m
+      for (int ch = 0; ch < 3; ++ch) {
+        const size_t i = 3 * size_t{c} + ch;
+        sum[ch] += w * b[i];
+        // m_parent = sum w_c (m_c + B_c (c_c - c_parent)), Q32 x m.
+        su[ch] += w * AddSat64(mu_[i], RoundShiftSat64(static_cast<Int128>(b[i]) * du, -16));
+        sv[ch] += w * AddSat64(mv_[i], RoundShiftSat64(static_cast<Int128>(b[i]) * dv, -16));
+      }
+    }
     for (int ch = 0; ch < 3; ++ch) {
       b[3 * size_t{k} + ch] = RoundShiftSat64(sum[ch], -32);
-      view[4 * size_t{k} + ch] = ToView(b[3 * size_t{k} + ch]);
+      mu_[3 * size_t{k} + ch] = RoundShiftSat64(su[ch], -32);
+      mv_[3 * size_t{k} + ch] = RoundShiftSat64(sv[ch], -32);
     }
+    SetView(k, b, view, moment);
   }
 }
 
@@ -199,14 +261,26 @@ void HierarchySolveQ32::AddEmitted(const int64_t* emitted_q32, int64_t* b) {
       view[4 * size_t{k} + ch] = ToView(b[i]);
     }
   }
-  for (size_t r = 0; r + 1 < run_begin_.size(); ++r) Pull(run_begin_[r], run_begin_[r + 1], b, view);
+  for (size_t r = 0; r + 1 < run_begin_.size(); ++r)
+    Pull(run_begin_[r], run_begin_[r + 1], b, view, moment_view_[0].data());
+}
+
+void HierarchySolveQ32::ReflectedStart(const int64_t* e, int64_t* b) const {
+  const BakeHierarchy& h = *h_;
+  for (uint32_t k = 0; k < node_count(); ++k)
+    for (int ch = 0; ch < 3; ++ch) {
+      const size_t i = 3 * size_t{k} + ch;
+      b[i] = h.leaf(k) ? RoundShiftSat64(static_cast<Int128>(rho_q32_[i]) * e[i], -32) : 0;
+    }
 }
 
 void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
   const BakeHierarchy& h = *h_;
   int32_t* view = view_[block].data();
+  int32_t* moment = moment_view_[block].data();
   int64_t* b = sweep->b;
   int64_t change = 0, peak = 0;
+  Int128 l1[3] = {0, 0, 0};
   for (uint32_t r = block_run_[block]; r < block_run_[block + 1]; ++r) {
     const uint32_t begin = run_begin_[r], end = run_begin_[r + 1];
     for (uint32_t k = begin; k < end; ++k) {  // gather
@@ -216,12 +290,15 @@ void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
       int64_t* gu = &gu_[3 * size_t{k}];
       int64_t* gv = &gv_[3 * size_t{k}];
       int64_t a[3], u[3], v[3];
+      const EmitterMomentEntry* me = moments_.entries.data() + moments_.offsets[k];  // data(): may be empty
+      const uint32_t moments = moments_.offsets[k + 1] - moments_.offsets[k];
       if (h.leaf(k)) {  // a leaf's links carry no gradient
         if (vector_) {
           GatherLeafAvx2(e, count, view, a);
         } else {
           GatherLeaf(e, count, view, a);
         }
+        if (moments != 0) AddMoments(me, moments, moment, a);
         for (int ch = 0; ch < 3; ++ch) {
           g0[ch] = RoundShiftSat64(a[ch], -kGatherFracBits);
           gu[ch] = gv[ch] = 0;
@@ -234,6 +311,7 @@ void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
       } else {
         GatherInner(e, g, count, view, a, u, v);
       }
+      if (moments != 0) AddMoments(me, moments, moment, a);
       constexpr int kGradientShift = kBakeGradientFracBits + kGatherFracBits - kExitanceFracBits;
       for (int ch = 0; ch < 3; ++ch) {
         gu[ch] = RoundShiftSat64(u[ch], -kGradientShift);
@@ -262,16 +340,19 @@ void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
         if (extra != nullptr) e = AddSat64(e, extra[i]);
         const int64_t updated =
             AddSat64(sweep->emitted[k], RoundShiftSat64(static_cast<Int128>(rho_q32_[i]) * e, -32));
+        delta_[i] = SubSat64(updated, b[i]);
         const int64_t d = SaturateI64(updated > b[i] ? Int128{updated} - b[i] : Int128{b[i]} - updated);
         if (d > change) change = d;
+        l1[ch] += d;
         if (updated > peak) peak = updated;
         b[i] = updated;
         view[4 * size_t{k} + ch] = ToView(updated);
       }
     }
-    Pull(begin, end, b, view);
+    Pull(begin, end, b, view, moment);
   }
   sweep->change[block] = change;
+  for (int ch = 0; ch < 3; ++ch) sweep->l1[block][ch] = l1[ch];
   sweep->peak[block] = peak;
 }
 
@@ -279,12 +360,16 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra
                                 int64_t* b, WorkerPool* pool, int64_t peak_floor_q32) {
   const uint32_t n = node_count();
   const size_t runs = run_begin_.size() - 1;
-  for (size_t r = 0; r < runs; ++r) Pull(run_begin_[r], run_begin_[r + 1], b, view_[0].data());
+  for (size_t r = 0; r < runs; ++r)
+    Pull(run_begin_[r], run_begin_[r + 1], b, view_[0].data(), moment_view_[0].data());
   for (uint32_t k = 0; k < n; ++k)
-    for (int c = 0; c < 3; ++c) view_[0][4 * size_t{k} + c] = ToView(b[3 * size_t{k} + c]);
-  for (int k = 1; k < kEmitterSolveBlocks; ++k)
+    if (h_->leaf(k)) SetView(k, b, view_[0].data(), moment_view_[0].data());
+  for (int k = 1; k < kEmitterSolveBlocks; ++k) {
     std::memcpy(view_[k].data(), view_[0].data(), size_t{n} * 4 * sizeof(int32_t));
-  Sweep sweep{this, emitted_q32, extra_irradiance_q32, b, {}, {}};
+    std::memcpy(moment_view_[k].data(), moment_view_[0].data(), moment_view_[0].size() * sizeof(int32_t));
+  }
+  Sweep sweep{this, emitted_q32, extra_irradiance_q32, b, {}, {}, {}};
+  Int128 l1_prev[3] = {0, 0, 0};
   const auto task = [](void* context, int thread) {
     Sweep* s = static_cast<Sweep*>(context);
     for (int block = thread; block < kEmitterSolveBlocks; block += s->self->threads_)
@@ -304,13 +389,20 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra
     for (int from = 0; from < kEmitterSolveBlocks; ++from) {
       const size_t lo = 4 * size_t{run_begin_[block_run_[from]]};
       const size_t hi = 4 * size_t{run_begin_[block_run_[from + 1]]};
-      for (int to = 0; to < kEmitterSolveBlocks; ++to)
-        if (to != from) std::memcpy(&view_[to][lo], &view_[from][lo], (hi - lo) * sizeof(int32_t));
+      const size_t mlo = 8 * size_t{moments_.inner_before[run_begin_[block_run_[from]]]};
+      const size_t mhi = 8 * size_t{moments_.inner_before[run_begin_[block_run_[from + 1]]]};
+      for (int to = 0; to < kEmitterSolveBlocks; ++to) {
+        if (to == from) continue;
+        std::memcpy(&view_[to][lo], &view_[from][lo], (hi - lo) * sizeof(int32_t));
+        std::memcpy(moment_view_[to].data() + mlo, moment_view_[from].data() + mlo, (mhi - mlo) * sizeof(int32_t));
+      }
     }
     int64_t change = 0, peak = peak_floor_q32;
+    Int128 l1[3] = {0, 0, 0};
     for (int k = 0; k < kEmitterSolveBlocks; ++k) {
       if (sweep.change[k] > change) change = sweep.change[k];
       if (sweep.peak[k] > peak) peak = sweep.peak[k];
+      for (int ch = 0; ch < 3; ++ch) l1[ch] += sweep.l1[k][ch];
     }
     if (change == 0) break;
     // change >= 2^55 would overflow the 128-bit test below; such a solve is
@@ -321,11 +413,31 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra
       const bool capped = Int128{change} * 100 >= Int128{previous} * 99;
       const bool done = capped ? lhs * 99 < peak
                                : lhs * change < static_cast<Int128>(peak) * (previous - change);
-      if (done) break;
+      if (done) {
+        Extrapolate(b, l1, l1_prev);
+        break;
+      }
     }
     previous = change;
+    for (int ch = 0; ch < 3; ++ch) l1_prev[ch] = l1[ch];
   }
   return sweep_count;
 }
+
+// The rest of the series, then the inner nodes and the view from the leaves
+// (surface_emitter_extrapolate.h).
+void HierarchySolveQ32::Extrapolate(int64_t* b, const Int128* l1, const Int128* l1_before) {
+  const BakeHierarchy& h = *h_;
+  const uint32_t n = node_count();
+  Int128 num[3], den[3];
+  ExtrapolationRatios(l1, l1_before, num, den);
+  if (num[0] == 0 && num[1] == 0 && num[2] == 0) return;
+  ExtrapolateLeaves(n, h.node_child_count.data(), delta_.data(), num, den, b);
+  for (size_t r = 0; r + 1 < run_begin_.size(); ++r)
+    Pull(run_begin_[r], run_begin_[r + 1], b, view_[0].data(), moment_view_[0].data());
+  for (uint32_t k = 0; k < n; ++k)
+    if (h.leaf(k)) SetView(k, b, view_[0].data(), moment_view_[0].data());
+}
+
 
 }  // namespace relight

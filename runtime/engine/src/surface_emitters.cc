@@ -172,6 +172,7 @@ int SurfaceEmitters::SolvePending(WorkerPool* pool) {
       // exitance, and the emitter's exitance is added after.
       for (uint32_t k = 0; k < n; ++k)
         for (int c = 0; c < 3; ++c) extra_[3 * size_t{k} + c] = s.now.first_shot_q32[k];
+      if (!warm) solver_.ReflectedStart(extra_.data(), s.now.exitance_q32.data());
       last_sweeps_ += solver_.SolveRgb(no_emission_.data(), extra_.data(), s.now.exitance_q32.data(), pool,
                                        int64_t{1} << kCoverageFracBits);
       solver_.AddEmitted(s.now.coverage_q32.data(), s.now.exitance_q32.data());

@@ -45,6 +45,11 @@ struct BakeOptions {
   // exitance exceeds this fraction of the brightest exitance (BF refinement);
   // 0 links every pair of patches (the dense solver's form factors).
   double link_epsilon = 1e-3;
+  // Hierarchical: bound each link's error also by link_epsilon times the
+  // receiving surface's own peak illuminance, estimated by a first solve
+  // over the links of the bound above, so dim surfaces are refined for
+  // their own light (docs/hierarchy.md, "Receiver-relative refinement").
+  bool receiver_relative_links = true;
   // Hierarchical: 256 visibility rays (not 16) for node pairs whose 16 rays disagree.
   bool adaptive_visibility = false;
   // Distributed bake: this process refines its share of the links and swaps

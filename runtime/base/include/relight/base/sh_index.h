@@ -28,7 +28,9 @@
 
 namespace relight {
 
-inline constexpr int kMaxShDegree = 16;  // 289 terms; the bake rejects more
+// 529 terms; the bake rejects more. 22, not 16, for the narrowest zooms of
+// real fixture types (11-12 degrees; docs/accuracy.md "Zoom at run time").
+inline constexpr int kMaxShDegree = 22;
 
 constexpr int ShTermCount(int degree) { return (degree + 1) * (degree + 1); }
 constexpr int ShIndex(int l, int m) { return l * l + l + m; }

@@ -20,14 +20,14 @@ namespace relight {
 //   q_m^m = seed[m],  q_l^m = a[l][m] (z q_{l-1}^m - b[l][m] q_{l-2}^m).
 struct ShTables {
   int64_t seed_q60[kMaxShDegree + 1];                    // q_m^m, |.| < 1
-  int64_t a_q60[kMaxShDegree + 1][kMaxShDegree + 1];     // [l][m], < sqrt(33)
+  int64_t a_q60[kMaxShDegree + 1][kMaxShDegree + 1];     // [l][m], < sqrt(45)
   int64_t b_q60[kMaxShDegree + 1][kMaxShDegree + 1];     // [l][m], < 1
   int64_t four_pi_over_q58[kMaxShDegree + 1];            // 4 pi/(2l+1), Q5.58 (Eq. 10)
 };
 void InitShTables(ShTables* tables);
 
 // Y_t(dir) for t < (degree+1)^2, dir a unit vector in Q1.30, out in Q1.30
-// (|Y_lm| <= sqrt((2l+1)/4pi) < 1.63 for l <= 16). Max error 1 LSB at every
+// (|Y_lm| <= sqrt((2l+1)/4pi) < 1.90 for l <= 22). Max error 1 LSB at every
 // degree (the recurrence runs at Q50-Q60 and rounds once; tests measure 0.5).
 // Precondition: |dir| = 1 within a few LSB (NormaliseQ30's output); other
 // inputs give meaningless but well-defined (saturated) values.

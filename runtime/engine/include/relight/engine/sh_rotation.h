@@ -14,11 +14,11 @@
 
 namespace relight {
 
-// Values of all band matrices up to kMaxShDegree (6545).
+// Values of all band matrices up to kMaxShDegree (16215 at 22).
 inline constexpr size_t kShRotationValues = ShRotationBandOffset(kMaxShDegree + 1);
 
 // The recurrence's coefficients u, v, w for every (l >= 2, m, n), Q3.29
-// (|.| < 2.9 up to l = 16), with the sqrt(2) of |m| = 1 folded into v.
+// (|.| < 3.4 up to l = 22), with the sqrt(2) of |m| = 1 folded into v.
 // Build once at start-up; share read-only.
 struct ShRotationTables {
   int32_t uvw_q29[(kShRotationValues - 10) * 3];

@@ -1,0 +1,36 @@
+// The VNNI bodies of CompressedClusterQ12 (compressed_recombine.h), apart
+// because the rest of the runtime is built with -mgeneral-regs-only.
+// Integer instructions only; bit-identical to CompressedClusterScalarQ12.
+//
+// vpdpwssd (no "s": not the saturating form) is vpmaddwd + vpaddd in one
+// instruction: acc + w_a K_a + w_b K_b with the int32 add wrapping exactly as
+// vpaddd does. The bounds of compressed_recombine.h keep every partial sum
+// inside int32 (|acc| <= r x 16383 x K_max < 2^30; the accumulators start at
+// the rounding half <= 2^30, so |half + acc| < 2^31), so nothing wraps and the
+// sums are the scalar path's.
+#pragma once
+
+#include <cstdint>
+
+#include "compressed_recombine.h"
+
+namespace relight {
+
+// AVX-512 (F, BW, VL, VNNI), 32 receivers a step in 512-bit registers; the
+// last step (n % 32 receivers) with masked loads and stores, so it does
+// receivers [0, n), all of them. Shifts >= 0 only (the caller checks).
+// Per 32 receivers and component pair: two loads, two vpermt2w into int16
+// pairs in receiver order, six vpdpwssd (two per channel); then per channel
+// a shift and the mean, and 12 vpermt2d interleave R, G, B. (In-lane
+// unpacks instead of vpermt2w need 6 more permutes a step to restore the
+// receiver order; no faster, measured: docs/performance.md.)
+void CompressedClusterAvx512VnniQ12(const int16_t* w, uint32_t n, uint32_t components,
+                                    const ClusterMultipliers& m, int32_t* out);
+
+// AVX-VNNI (VEX, 256 bits): the AVX2 body (compressed_recombine_avx2.h) with
+// each vpmaddwd + vpaddd fused into one vpdpwssd. Receivers
+// [0, n - n % 16), shifts >= 0 only; the caller does the tail.
+void CompressedClusterAvxVnniQ12(const int16_t* w, uint32_t n, uint32_t components,
+                                 const ClusterMultipliers& m, int32_t* out);
+
+}  // namespace relight

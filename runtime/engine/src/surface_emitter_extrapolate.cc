@@ -1,0 +1,41 @@
+// The emitter solve's final extrapolation (surface_emitter_extrapolate.h).
+//
+// Scaling: the sums are Int128 (|change| < 2^63 over < 2^32 leaves); both
+// are shifted until the earlier fits 31 bits, so num < 2^31 and
+// delta (< 2^63) x num < 2^94.
+#include "surface_emitter_extrapolate.h"
+
+#include <cstddef>
+
+#include "relight/base/fixed_ops.h"
+
+namespace relight {
+
+void ExtrapolationRatios(const Int128 l1[3], const Int128 l1_before[3], Int128 num[3], Int128 den[3]) {
+  for (int ch = 0; ch < 3; ++ch) {
+    num[ch] = 0, den[ch] = 1;
+    if (l1[ch] <= 0 || l1[ch] >= l1_before[ch]) continue;  // not contracting
+    if (l1[ch] * 10 > l1_before[ch] * 9) {  // r > 0.9: 0.9 / 0.1
+      num[ch] = 9;
+      continue;
+    }
+    int shift = 0;
+    while ((l1_before[ch] >> shift) > INT32_MAX) ++shift;
+    num[ch] = l1[ch] >> shift;
+    den[ch] = (l1_before[ch] >> shift) - num[ch];
+    if (den[ch] <= 0) num[ch] = 0, den[ch] = 1;
+  }
+}
+
+void ExtrapolateLeaves(uint32_t nodes, const uint8_t* child_count, const int64_t* delta, const Int128 num[3],
+                       const Int128 den[3], int64_t* b) {
+  for (uint32_t k = 0; k < nodes; ++k) {
+    if (child_count[k] != 0) continue;
+    for (int ch = 0; ch < 3; ++ch) {
+      const size_t i = 3 * size_t{k} + ch;
+      if (num[ch] != 0) b[i] = AddSat64(b[i], SaturateI64(DivRound(Int128{delta[i]} * num[ch], den[ch])));
+    }
+  }
+}
+
+}  // namespace relight

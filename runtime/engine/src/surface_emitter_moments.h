@@ -1,0 +1,49 @@
+// The source-moment terms of the emitter solve's gathers (docs/hierarchy.md
+// "Bias and its fix", as the baker's hierarchy_solve.cc): a link from an
+// inner node q gives its receiver f (B_q + (g_qp / f_qp) . m_q) rather than
+// f B_q, m_q the first moment of q's exitance about its centre. A coarse
+// link otherwise credits the receiver with q's mean exitance, and in a room
+// the part of q a receiver sees best is dimmer than that mean: a dark bias
+// of the interreflected light (0.33 % of peak on the Cornell wall window's
+// grid, 0.013 % with the terms).
+//
+// Built at open (allocates); the solve reads it. Integer only.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "relight/bake/bake.h"
+#include "surface_emitter_gather_avx2.h"
+
+namespace relight {
+
+// Moment weights before the shift: Q36 per metre, so a weight times the
+// moment view (Q20 x metres) is Q56, as a factor (UQ0.32) times the exitance
+// view (Q24) is.
+inline constexpr int kMomentWeightFracBits = 36;
+
+struct EmitterMomentTable {
+  // Node k's terms: entries[offsets[k] .. offsets[k + 1]), one per gather
+  // entry (f_pq and f_qp both > 0) whose source is an inner node.
+  std::vector<uint32_t> offsets;
+  std::vector<EmitterMomentEntry> entries;
+  // inner_before[k]: inner nodes before node k (an inner node's index among
+  // them; entries' sources are such indices). n + 1 values.
+  std::vector<uint32_t> inner_before;
+  // t: the weights are stored Q(36 - t) so the largest fits int32; a gather
+  // multiplies its moment sum by 2^t.
+  int shift = 0;
+};
+
+void BuildEmitterMoments(const BakeHierarchy& h, EmitterMomentTable* table);
+
+// Node k's largest gather multiplier of the moment view, 2^t sum (|wu| + |wv|),
+// saturated to 2^63 - 1 (the solve's overflow bound adds it to sum f).
+uint64_t EmitterMomentRowSum(const EmitterMomentTable& table, uint32_t k);
+
+// Scalar: m[c] = sum wu x moment[8 s + c] + wv x moment[8 s + 4 + c]
+// (GatherMomentAvx2's contract, the same int64 sums).
+void GatherMoment(const EmitterMomentEntry* e, uint32_t count, const int32_t* moment, int64_t m[3]);
+
+}  // namespace relight
