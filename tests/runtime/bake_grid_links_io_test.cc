@@ -3,6 +3,7 @@
 // (kInvalidArgument) and through the reader (kCorrupt, naming the section),
 // the version and section-count rules, and random damage to the section.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdint>
 #include <cstdio>
@@ -47,7 +48,9 @@ class BakeGridLinksIoTest : public ::testing::Test {
     bake_ = bake_test::MakeBake(7);
     AddGridLinks(&*bake_.hierarchy);
     links_ = bake_.hierarchy->grid_link_node.size();
-    path_ = ::testing::TempDir() + "bake_grid_links_io_test.rlb";
+    // One file per test and process: ctest -j runs this binary's tests at once.
+    path_ = ::testing::TempDir() + "bake_grid_links_io_test_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" + std::to_string(getpid()) + ".rlb";
     ASSERT_TRUE(WriteBake(bake_, path_).ok());
     file_ = ReadFileBytes(path_);
   }

@@ -9,6 +9,8 @@
 #include <random>
 #include <string>
 
+#include <unistd.h>
+
 #include "bake_file_edit.h"
 #include "bake_test_bake.h"
 #include "relight/bake/bake.h"
@@ -34,7 +36,11 @@ Bake WithWashDegree(int degree) {
 
 class BakeHighDegreeIoTest : public ::testing::Test {
  protected:
-  void SetUp() override { path_ = ::testing::TempDir() + "bake_high_degree_io_test.rlb"; }
+  // One file per test and process: ctest -j runs this binary's tests at once.
+  void SetUp() override {
+    path_ = ::testing::TempDir() + "bake_high_degree_io_test_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" + std::to_string(getpid()) + ".rlb";
+  }
   void TearDown() override { std::remove(path_.c_str()); }
   std::string path_;
 };
