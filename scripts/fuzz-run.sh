@@ -2,10 +2,11 @@
 # Runs every libFuzzer target of tests/fuzz for a fixed time (issue 17,
 # docs/security.md "Fuzzing"). Installs clang and its runtime libraries if
 # missing, builds the fuzz targets of the `asan` preset (clang, ASan + UBSan,
-# libFuzzer; the tree scripts/sanitize-test.sh tests) into build-asan/, then runs the targets two at a time from their checked-in
-# corpora. New inputs go to a scratch folder, never into the tree. A crash,
-# leak, timeout (> 10 s) or out-of-memory (> 2 GB) fails the run and leaves
-# the input in out/fuzz/<target>/: fix the bug, then add that file to
+# libFuzzer; the tree scripts/sanitize-test.sh tests) into build-asan/, then
+# runs the targets two at a time from their checked-in corpora. New inputs go
+# to a scratch folder, never into the tree. A crash, leak, timeout (> 10 s)
+# or out-of-memory (> 2 GB) fails the run and leaves the input in
+# out/fuzz/<target>/: fix the bug, then add that file to
 # tests/fuzz/corpus/<target>/ as a regression case.
 #
 #   scripts/fuzz-run.sh [SECONDS_PER_TARGET] [TARGET...]   (default 30 s, all)
