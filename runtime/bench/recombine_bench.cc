@@ -174,10 +174,7 @@ void BM_CompressedRecombineOverStream(benchmark::State& state) {
                                   static_cast<double>(cpca.weights.size() + cpca.vectors.size());
 }
 BENCHMARK(BM_CompressedRecombineOverStream)
-    ->Args({16384, 81, 8, 512})
-    ->Args({16384, 81, 16, 512})
-    ->Args({100000, 81, 8, 512})
-    ->Args({100000, 81, 16, 512})
+    ->Apply(relight_bench::CompressedShapes)
     ->Unit(benchmark::kMicrosecond)
     ->UseManualTime();
 

@@ -10,9 +10,17 @@
 #include <random>
 #include <vector>
 
+#include <benchmark/benchmark.h>
+
 #include "relight/bake/bake.h"
 
 namespace relight_bench {
+
+// The compressed shapes every compressed benchmark runs (receivers, terms,
+// components, cluster size), so the paths and the baseline compare alike.
+inline void CompressedShapes(benchmark::internal::Benchmark* b) {
+  b->Args({16384, 81, 8, 512})->Args({16384, 81, 16, 512})->Args({100000, 81, 8, 512})->Args({100000, 81, 16, 512});
+}
 
 // Smooth-ish random int16 data: what the bake's quantised bases look like to
 // the memory system (values do not change the kernel's speed).

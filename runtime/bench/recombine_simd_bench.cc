@@ -115,10 +115,7 @@ void BM_CompressedRecombinePathsOverStream(benchmark::State& state) {
   state.counters["read_us"] = read * 1e6;
 }
 BENCHMARK(BM_CompressedRecombinePathsOverStream)
-    ->Args({16384, 81, 8, 512})
-    ->Args({16384, 81, 16, 512})
-    ->Args({100000, 81, 8, 512})
-    ->Args({100000, 81, 16, 512})
+    ->Apply(relight_bench::CompressedShapes)
     ->Unit(benchmark::kMicrosecond)
     ->UseManualTime();
 
