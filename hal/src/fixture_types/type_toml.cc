@@ -22,7 +22,12 @@
 //
 //   [[mode]]
 //   name = "16 bit"
+//   pan_range_deg = 630                # optional: the mode's own <Physical>,
+//   tilt_range_deg = 265               #   overriding the type's
+//   beam_deg = [12.0, 30.0]
 //   channels = ["Dimmer", "Pan", "Pan fine", ...]
+//
+// FixtureTypeToToml() (type_toml_write.cc) writes this form.
 #include <toml++/toml.h>
 
 #include <cmath>
@@ -96,7 +101,7 @@ class Reader {
       }
     }
     if (!known) Fail(*t.get("function"), "unknown function '" + fn + "'");
-    if (c.function == DmxFunction::kIgnored) c.ignored_why = "ignored in the TOML type";
+    if (c.function == DmxFunction::kIgnored) c.ignored_why = kTomlIgnoredWhy;
     for (const DmxChannel& other : out->channels) {
       if (other.name == c.name) Fail(t, "channel '" + c.name + "' defined twice");
     }
@@ -133,11 +138,31 @@ class Reader {
     out->channels.push_back(std::move(c));
   }
 
+  // pan_range_deg, tilt_range_deg, beam_deg: of the type or of one mode.
+  void Physical(const toml::table& t, int* pan, int* tilt, int32_t* beam_min, int32_t* beam_max) const {
+    if (const toml::node* n = t.get("pan_range_deg")) *pan = static_cast<int>(Int(*n, "pan_range_deg", 0, 3600));
+    if (const toml::node* n = t.get("tilt_range_deg")) *tilt = static_cast<int>(Int(*n, "tilt_range_deg", 0, 3600));
+    if (const toml::node* n = t.get("beam_deg")) {
+      const toml::array* a = n->as_array();
+      if (a == nullptr || a->size() != 2) Fail(*n, "beam_deg is [narrowest, widest]");
+      *beam_min = DegreesQ16(*a->get(0), "beam_deg");
+      *beam_max = DegreesQ16(*a->get(1), "beam_deg");
+      if (*beam_min > *beam_max) Fail(*n, "beam_deg is [narrowest, widest]");
+    }
+  }
+
   void Mode(const toml::table& t, FixtureType* out) const {
+    for (const auto& [key, node] : t) {
+      const std::string_view k = key.str();
+      if (k != "name" && k != "channels" && k != "pan_range_deg" && k != "tilt_range_deg" && k != "beam_deg") {
+        Fail(node, "mode: unknown key '" + std::string(k) + "'");
+      }
+    }
     DmxMode m;
     m.name = Str(t, "name", true);
     m.line = static_cast<int>(t.source().begin.line);
     if (out->FindMode(m.name) != nullptr) Fail(t, "mode '" + m.name + "' defined twice");
+    Physical(t, &m.pan_range_deg, &m.tilt_range_deg, &m.beam_min_q16, &m.beam_max_q16);
     const toml::node* list = t.get("channels");
     if (list == nullptr || !list->is_array() || list->as_array()->empty()) {
       Fail(t, "mode '" + m.name + "': 'channels' must be a non-empty array of channel names");
@@ -167,15 +192,7 @@ class Reader {
     out->manufacturer = Str(root, "manufacturer", true);
     out->model = Str(root, "model", true);
     out->type = Str(root, "type", false);
-    if (const toml::node* n = root.get("pan_range_deg")) out->pan_range_deg = static_cast<int>(Int(*n, "pan_range_deg", 0, 3600));
-    if (const toml::node* n = root.get("tilt_range_deg")) out->tilt_range_deg = static_cast<int>(Int(*n, "tilt_range_deg", 0, 3600));
-    if (const toml::node* n = root.get("beam_deg")) {
-      const toml::array* a = n->as_array();
-      if (a == nullptr || a->size() != 2) Fail(*n, "beam_deg is [narrowest, widest]");
-      out->beam_min_q16 = DegreesQ16(*a->get(0), "beam_deg");
-      out->beam_max_q16 = DegreesQ16(*a->get(1), "beam_deg");
-      if (out->beam_min_q16 > out->beam_max_q16) Fail(*n, "beam_deg is [narrowest, widest]");
-    }
+    Physical(root, &out->pan_range_deg, &out->tilt_range_deg, &out->beam_min_q16, &out->beam_max_q16);
     const toml::array* channels = root["channel"].as_array();
     const toml::array* modes = root["mode"].as_array();
     if (channels == nullptr) Fail(root, "no [[channel]]");
