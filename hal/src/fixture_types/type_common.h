@@ -11,4 +11,8 @@ namespace relight::hal {
 // over 4 MiB (the largest .qxf in QLC+'s library is ~100 kB).
 Status ReadTypeFile(const std::string& path, std::string* text);
 
+// DmxChannel::ignored_why of an "ignored" channel read from the TOML form
+// (the writer leaves it out rather than comment every such channel with it).
+inline constexpr const char* kTomlIgnoredWhy = "ignored in the TOML type";
+
 }  // namespace relight::hal

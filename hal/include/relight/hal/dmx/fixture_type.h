@@ -95,6 +95,19 @@ Status ParseQxf(const std::string& text, const std::string& where, FixtureType* 
 Status LoadFixtureTypeToml(const std::string& path, FixtureType* out);
 Status ParseFixtureTypeToml(const std::string& text, const std::string& where, FixtureType* out);
 
+// The TOML form of a type, which ParseFixtureTypeToml reads back to a type
+// FixtureTypeDifference() calls equal (a .qxf converted to be edited, docs/dmx.md).
+// Not carried: `line`, `where`, and `ignored_why` (written as a comment).
+// A string that is not UTF-8 cannot round-trip: its bytes are escaped as
+// Latin-1 code points and read back different (FixtureTypeDifference shows
+// it; relight-fixture-type refuses such a type).
+std::string FixtureTypeToToml(const FixtureType& type);
+
+// The first difference between two types in what they mean (everything but
+// line, where and ignored_why), e.g. "channel 3 'Zoom': big_to_small true vs
+// false"; empty if there is none.
+std::string FixtureTypeDifference(const FixtureType& a, const FixtureType& b);
+
 // By extension: .qxf -> LoadQxf, .toml -> LoadFixtureTypeToml.
 Status LoadFixtureType(const std::string& path, FixtureType* out);
 
