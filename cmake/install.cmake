@@ -9,7 +9,7 @@ include(GNUInstallDirs)
 # prefix; /usr/local/lib/systemd/system is read too).
 set(RELIGHT_SYSTEMD_UNITDIR "lib/systemd/system" CACHE STRING "where the systemd units are installed (under the prefix)")
 
-foreach(tool relightd relight-bake relight-render relight-probe relight-lid relight-replay-hash)
+foreach(tool relightd relight-bake relight-render relight-probe relight-lid relight-replay-hash relight-fixture-type)
   if(TARGET ${tool})  # a runtime-only build has no baker and no daemon
     install(TARGETS ${tool} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
   endif()

@@ -18,7 +18,7 @@ fail() { echo "FAIL: $*"; status=1; }
 DESTDIR="$dest" cmake --install "$BUILD" > "$dest.log" 2>&1 || { cat "$dest.log"; rm -f "$dest.log"; echo "FAIL: cmake --install"; exit 1; }
 rm -f "$dest.log"
 root="$dest$prefix"
-for tool in relightd relight-bake relight-render relight-probe relight-lid; do
+for tool in relightd relight-bake relight-render relight-probe relight-lid relight-fixture-type; do
   [ -x "$root/bin/$tool" ] || fail "bin/$tool missing or not executable"
 done
 for unit in relightd.service relightd@.service olad.service; do
