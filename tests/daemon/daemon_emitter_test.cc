@@ -235,6 +235,79 @@ TEST(DaemonEmitter, ModbusWritesSwitchAndMoveAPanel) {
   EXPECT_EQ(dark, before) << "off again: not the light before, bit for bit";
 }
 
+// A patch without [[emitter]] leaves the bake's hierarchy unread (it is most
+// of a hierarchical bake's memory); a SIGHUP with a patch that adds one reads
+// it, the fixtures keeping their state, and the panel then lights the wall.
+TEST(DaemonEmitter, TheHierarchyIsReadOnlyWhenThePatchHasAnEmitter) {
+  if (!FileExists(RELIGHT_TEST_HIER_BAKE)) GTEST_SKIP() << "no bake (ctest's MakeLivingRoomHierBake makes it)";
+  DaemonConfig c = Config("[[fixture]]\nname = \"ceiling_spot\"\n");
+  c.fps = 20;
+  Daemon d;
+  const Status opened = d.Open(c);
+  ASSERT_TRUE(opened.ok()) << opened.ToString();
+  EXPECT_FALSE(d.engine().bake().hierarchy.has_value()) << "no emitter in the patch: the hierarchy was read";
+  const LightQ12 lum[3] = {LightQ12::FromRaw(1 << 20), LightQ12::FromRaw(1 << 20), LightQ12::FromRaw(1 << 20)};
+  SurfaceEmitterShape shape;
+  EXPECT_EQ(d.engine().SetSurfaceEmitter(0, shape, lum).code(), StatusCode::kUnsupported);
+
+  ASSERT_TRUE(d.Start().ok());
+  std::atomic<int64_t> frames{0};
+  std::atomic<bool> hierarchy{false};
+  std::mutex mu;
+  FixtureState shown;  // fixture 0 as last drawn
+  d.SetFrameObserver([&](const FrameInfo& f) {  // on the daemon's thread
+    {
+      std::lock_guard<std::mutex> lock(mu);
+      shown = d.engine().state(0);
+    }
+    hierarchy.store(d.engine().bake().hierarchy.has_value());
+    frames.store(f.frame + 1);
+  });
+  // Run on this thread, as relightd does: the reload makes a new OSMesa
+  // context there, and the Daemon destroys it here.
+  std::atomic<bool> stop{false}, reload{false};
+  FixtureState before;
+  std::thread console([&] {
+    while (frames.load() < 1) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    {
+      std::lock_guard<std::mutex> lock(mu);
+      before = shown;
+    }
+    std::ofstream(c.patch_path, std::ios::binary | std::ios::trunc)
+        << "[[fixture]]\nname = \"ceiling_spot\"\n\n" << kPatch;
+    reload.store(true);
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (!hierarchy.load() && std::chrono::steady_clock::now() < give_up) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    stop.store(true);  // (no input moves: after the reload's frame the loop waits for one)
+  });
+  const Status run_status = d.Run(stop, reload);
+  console.join();
+  ASSERT_TRUE(run_status.ok()) << run_status.ToString();
+  EXPECT_EQ(d.stats().reload_failures, 0);
+  ASSERT_TRUE(d.engine().bake().hierarchy.has_value()) << "the patch's emitter did not bring the hierarchy";
+  EXPECT_EQ(d.patch().emitters.size(), 1u);
+  const FixtureState after = d.engine().state(0);
+  EXPECT_EQ(after.dimmer, before.dimmer) << "the fixture lost its state when the bake was read again";
+  EXPECT_EQ(after.pan_deg, before.pan_deg);
+  EXPECT_EQ(after.tilt_deg, before.tilt_deg);
+
+  // The panel now works: the same engine lights the wall through it.
+  const Luminance off = Snapshot(d.engine());
+  SurfaceEmitterShape panel;
+  panel.surface = "room/+x";
+  const double corners[4][3] = {{6.0, 1.6, 1.05}, {6.0, 2.8, 1.05}, {6.0, 2.8, 1.95}, {6.0, 1.6, 1.95}};
+  for (int k = 0; k < 4; ++k) {
+    for (int i = 0; i < 3; ++i) panel.corners_q16[k][i] = static_cast<int32_t>(std::lround(corners[k][i] * 65536));
+  }
+  panel.corner_count = 4;
+  const Status placed = d.engine().SetSurfaceEmitter(0, panel, lum);
+  ASSERT_TRUE(placed.ok()) << placed.ToString();
+  d.engine().Update();
+  EXPECT_NE(Snapshot(d.engine()), off);
+}
+
 TEST(DaemonEmitter, AShapeOffItsSurfaceIsAnErrorAtOpenNamingFileLine) {
   if (!FileExists(RELIGHT_TEST_HIER_BAKE)) GTEST_SKIP() << "no bake (ctest's MakeLivingRoomHierBake makes it)";
   // Moved 5 m along y from 2.2, the panel is past the 4.5 m wall (partly past

@@ -22,7 +22,8 @@ using namespace bake_format;  // NOLINT: the layout constants read better bare
 
 class Parser {
  public:
-  Parser(const uint8_t* data, size_t size, std::string name) : in_(data, size, std::move(name)) {}
+  Parser(const uint8_t* data, size_t size, std::string name, const ReadBakeOptions& options = {})
+      : in_(data, size, std::move(name)), options_(options) {}
 
   Status Parse(Bake* out) {
     RELIGHT_RETURN_IF_ERROR(in_.Open());
@@ -43,6 +44,10 @@ class Parser {
     if (!e.empty()) return in_.Corrupt("sections LUMI", e);
     RELIGHT_RETURN_IF_ERROR(CheckSectionCount(bake));
     RELIGHT_RETURN_IF_ERROR(ParseReceivers(&bake));
+    if (!options_.hierarchy) {
+      *out = std::move(bake);
+      return Status::Ok();
+    }
     if (hierarchy_index_ != 0) RELIGHT_RETURN_IF_ERROR(DecodeHierarchy(&in_, hierarchy_index_, &bake));
     if (grid_links_) {
       uint32_t points = 0;  // each <= 2^24, at most 64 grids: no wrap
@@ -153,6 +158,7 @@ class Parser {
   }
 
   ContainerReader in_;
+  ReadBakeOptions options_;
   size_t hierarchy_index_ = 0;  // TOC index of HIER (LINK follows); 0: none
   bool grid_links_ = false;     // GLNK follows LINK
   Counts counts_;
@@ -165,10 +171,12 @@ Status ParseBake(const uint8_t* data, size_t size, Bake* out) {
   return Parser(data, size, "(in memory)").Parse(out);
 }
 
-Status ReadBake(const std::string& path, Bake* out) {
+Status ReadBake(const std::string& path, Bake* out) { return ReadBake(path, ReadBakeOptions{}, out); }
+
+Status ReadBake(const std::string& path, const ReadBakeOptions& options, Bake* out) {
   std::vector<uint8_t> bytes;
   RELIGHT_RETURN_IF_ERROR(ReadWholeFile(path, &bytes));
-  return Parser(bytes.data(), bytes.size(), "'" + path + "'").Parse(out);
+  return Parser(bytes.data(), bytes.size(), "'" + path + "'", options).Parse(out);
 }
 
 }  // namespace relight

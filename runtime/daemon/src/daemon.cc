@@ -72,6 +72,9 @@ struct Daemon::Impl {
   DaemonStats stats;
   int64_t period_us = 33333;
   BakeFileId bake_id;      // the bake file as loaded: SIGHUP re-reads it when it changed
+  // How the engine opens its bake; surface_emitters only while the patch has
+  // an [[emitter]] (the hierarchy is most of a hierarchical bake's memory).
+  EngineOptions engine_options;
   bool force_render = false;  // a new bake: draw the next frame even if no input moved
   Status fatal;            // the renderer could not take a new bake: Run stops with this
 
@@ -158,13 +161,21 @@ struct Daemon::Impl {
     return Status::Ok();
   }
 
-  Status LoadResolved(hal::Patch* out) {
+  // The patch file (and --modbus-port) as read, not yet bound to the bake.
+  Status LoadPatchFile(hal::Patch* out) const {
     hal::Patch p;
     if (!config.patch_path.empty()) RELIGHT_RETURN_IF_ERROR(hal::LoadPatch(config.patch_path, &p));
     if (config.modbus_port >= 0) {
       p.modbus_tcp.enabled = true;
       p.modbus_tcp.port = config.modbus_port;
     }
+    *out = std::move(p);
+    return Status::Ok();
+  }
+
+  Status LoadResolved(hal::Patch* out) {
+    hal::Patch p;
+    RELIGHT_RETURN_IF_ERROR(LoadPatchFile(&p));
     RELIGHT_RETURN_IF_ERROR(hal::ResolvePatch(Luminaires(engine), &p));
     *out = std::move(p);
     return Status::Ok();
@@ -183,21 +194,36 @@ struct Daemon::Impl {
 
   // SIGHUP, first step: a changed bake file is read and, if valid, taken
   // (bake_reload.h); a bad one is refused and the running bake stays.
-  void ReloadBakeFile() {
+  // `force`: read it again even if the file is the one loaded (the engine
+  // options changed). False when the new bake was refused.
+  bool ReloadBakeFile(bool force = false) {
     BakeReload result = BakeReload::kUnchanged;
-    EngineOptions options;
-    options.threads = config.engine_threads;
-    if (Status st = ReloadBake(config.bake_path, &engine, &bake_id, &result, options); !st.ok()) {
+    const BakeFileId before = bake_id;
+    if (force) bake_id = BakeFileId{};
+    if (Status st = ReloadBake(config.bake_path, &engine, &bake_id, &result, engine_options); !st.ok()) {
+      bake_id = before;
       ++stats.reload_failures;
       Log(LogLevel::kError, "relightd: bake reload refused, keeping the running bake: %s", st.ToString().c_str());
-      return;
+      return false;
     }
-    if (result == BakeReload::kUnchanged) return;
+    if (result == BakeReload::kUnchanged) return true;
     fatal = pipeline.Init(engine, config.width, config.height, View(), config.white_q12);
-    if (!fatal.ok()) return;
+    if (!fatal.ok()) return true;
     force_render = true;
-    Log(LogLevel::kInfo, "relightd: bake %s reloaded (%u vertices, %d luminaires)", config.bake_path.c_str(),
-        engine.vertex_count(), engine.luminaire_count());
+    Log(LogLevel::kInfo, "relightd: bake %s reloaded (%u vertices, %d luminaires%s)", config.bake_path.c_str(),
+        engine.vertex_count(), engine.luminaire_count(),
+        engine_options.surface_emitters ? ", with its hierarchy for surface emitters" : "");
+    return true;
+  }
+
+  // A reloaded patch that brings the first [[emitter]] needs the bake's
+  // hierarchy, which was not loaded: the bake is opened again with it (the
+  // fixtures keep their state). False (and the engine as it was) on error.
+  bool EnableSurfaceEmitters() {
+    engine_options.surface_emitters = true;
+    if (ReloadBakeFile(/*force=*/true) && fatal.ok()) return true;
+    engine_options.surface_emitters = false;
+    return false;
   }
 
   void Reload() {
@@ -209,6 +235,15 @@ struct Daemon::Impl {
       ++stats.reload_failures;
       Log(LogLevel::kError, "relightd: patch reload failed, keeping the old patch: %s", st.ToString().c_str());
       return;
+    }
+    if (!p.emitters.empty() && !engine_options.surface_emitters) {
+      Log(LogLevel::kInfo, "relightd: the patch now has emitters: reading the bake's hierarchy");
+      if (!EnableSurfaceEmitters()) {
+        Log(LogLevel::kError, "relightd: patch reload failed, keeping the old patch: its [[emitter]] entries need "
+                              "the bake's hierarchy, which could not be read");
+        return;
+      }
+      if (!fatal.ok()) return;
     }
     hal::Patch old = patch;
     for (auto& s : patch_sources) s->Stop();  // frees ports and devices for the new sources
@@ -309,11 +344,12 @@ Status Daemon::Open(const DaemonConfig& config) {
   }
   m.period_us = static_cast<int64_t>(1e6 / config.fps + 0.5);
   m.bake_id = StatBakeFile(config.bake_path);  // before reading: a change meanwhile is read again on SIGHUP
-  EngineOptions engine_options;
-  engine_options.threads = config.engine_threads;
-  RELIGHT_RETURN_IF_ERROR(m.engine.Open(config.bake_path, engine_options));
   hal::Patch p;
-  RELIGHT_RETURN_IF_ERROR(m.LoadResolved(&p));
+  RELIGHT_RETURN_IF_ERROR(m.LoadPatchFile(&p));
+  m.engine_options.threads = config.engine_threads;
+  m.engine_options.surface_emitters = !p.emitters.empty();
+  RELIGHT_RETURN_IF_ERROR(m.engine.Open(config.bake_path, m.engine_options));
+  RELIGHT_RETURN_IF_ERROR(hal::ResolvePatch(Luminaires(m.engine), &p));
   const std::string script = config.replay_path.empty() ? p.replay_script : config.replay_path;
   RELIGHT_RETURN_IF_ERROR(m.Adopt(std::move(p)));
   if (!script.empty()) {

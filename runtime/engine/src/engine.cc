@@ -113,7 +113,9 @@ Status Engine::Open(Bake bake) { return Open(std::move(bake), EngineOptions{}); 
 
 Status Engine::Open(const std::string& bake_path, const EngineOptions& options) {
   Bake bake;
-  RELIGHT_RETURN_IF_ERROR(ReadBake(bake_path, &bake));
+  ReadBakeOptions read;
+  read.hierarchy = options.surface_emitters;
+  RELIGHT_RETURN_IF_ERROR(ReadBake(bake_path, read, &bake));
   return Open(std::move(bake), options);
 }
 
@@ -121,6 +123,7 @@ Status Engine::Open(Bake bake, const EngineOptions& options) {
   RELIGHT_RETURN_IF_ERROR(ValidateBake(bake));
   std::unique_ptr<Impl> impl(new Impl);
   impl->bake = std::move(bake);
+  if (!options.surface_emitters) impl->bake.hierarchy.reset();
   RELIGHT_RETURN_IF_ERROR(impl->Allocate(options));
   impl->Update();
   impl_ = std::move(impl);

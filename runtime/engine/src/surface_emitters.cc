@@ -16,8 +16,9 @@ namespace {
 
 Status NoHierarchy() {
   return Status(StatusCode::kUnsupported,
-                "surface emitter: the bake has no radiosity hierarchy (bake it with "
-                "--solver hierarchical and without --no-hierarchy)");
+                "surface emitter: no radiosity hierarchy loaded (it needs a bake of --solver "
+                "hierarchical without --no-hierarchy, opened with surface emitters: relightd "
+                "loads the hierarchy only when its patch has an [[emitter]])");
 }
 
 }  // namespace

@@ -287,6 +287,14 @@ Status ValidateBake(const Bake& bake);
 // degrees, scales. Returns kOk, kNotFound, kIoError, kCorrupt (what and
 // where), kUnsupported (newer version). `out` is only written on success.
 Status ReadBake(const std::string& path, Bake* out);
+struct ReadBakeOptions {
+  // false: the hierarchy's sections (HIER, LINK, GLNK) are skipped, neither
+  // decompressed nor kept (Bake::hierarchy stays empty), for a reader that
+  // places no light sources on surfaces: they are most of a hierarchical
+  // bake's memory once read. Everything else is read and checked as always.
+  bool hierarchy = true;
+};
+Status ReadBake(const std::string& path, const ReadBakeOptions& options, Bake* out);
 // Same, from bytes in memory (used by tests and fuzzing).
 Status ParseBake(const uint8_t* data, size_t size, Bake* out);
 

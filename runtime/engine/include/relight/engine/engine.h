@@ -44,6 +44,11 @@ struct EngineOptions {
   // New links one adaptive-refine emitter placement may make (8 bytes each,
   // allocated at Open); a placement needing more is refused with kOutOfRange.
   int emitter_refine_links = kDefaultSurfaceEmitterRefineLinks;
+  // false: the bake's radiosity hierarchy is neither read nor kept and no
+  // emitter buffers are sized (SetSurfaceEmitter answers kUnsupported). On a
+  // hierarchical bake that is most of the engine's memory: relightd opens
+  // this way when its patch has no [[emitter]].
+  bool surface_emitters = true;
 };
 
 class Engine {
