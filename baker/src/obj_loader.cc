@@ -209,7 +209,8 @@ ObjModel ParseObj(const std::string& text, const std::string& path, bool read_ma
     } else if (op == "mtllib" && read_materials) {
       if (t.size() < 2) reader.Fail("mtllib needs a file name");
       for (size_t k = 1; k < t.size(); ++k) {
-        const std::string library = FolderOf(path) + t[k];
+        // Relative to the OBJ's folder, as exporters write it; an absolute path as it is.
+        const std::string library = t[k][0] == '/' ? t[k] : FolderOf(path) + t[k];
         // Some exporters repeat mtllib; read each library once.
         if (libraries.insert(library).second) {
           LoadMtl(library, path, reader.line(), &model.materials);

@@ -126,6 +126,12 @@ TEST_F(BoundedRead, SceneMeshMtllibAndLidThatAreAFifoOrDevZero) {
   EXPECT_NE(what.find("m.obj:1: cannot open material library: '" + dir_ + "/m.mtl' is a FIFO"),
             std::string::npos)
       << what;
+  // An absolute mtllib path is taken as it is (not joined to the OBJ's folder).
+  Write("z.obj", "mtllib /dev/zero\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  what = SceneErrorOf(Head() + "[[mesh]]\nfile = \"z.obj\"\n");
+  EXPECT_NE(what.find("z.obj:1: cannot open material library: '/dev/zero' is a character device"),
+            std::string::npos)
+      << what;
   // A luminaire's photometric file: the scene's line and the file's problem.
   what = SceneErrorOf(Head() +
                       "[[quad]]\nname = \"floor\"\ncorners = [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]\n"
