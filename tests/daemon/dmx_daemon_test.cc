@@ -9,6 +9,8 @@
 // crash or stall the daemon. Skips where olad or namespaces are unavailable.
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
+
+#include "common/required_or_skip.h"
 #include <netinet/in.h>
 #include <sched.h>
 #include <signal.h>
@@ -156,9 +158,9 @@ void SendGarbage(const char* ip) {
 
 TEST(DmxDaemon, EndToEndOverTheWireThroughOlad) {
   if (!Exists("/usr/bin/olad") || !Exists("/usr/bin/ola_streaming_client") || !Exists("/usr/bin/setpriv")) {
-    GTEST_SKIP() << "olad not installed (apt-get install ola)";
+    RELIGHT_SKIP_UNLESS_REQUIRED("olad not installed (apt-get install ola)");
   }
-  if (unshare(CLONE_NEWNET) != 0) GTEST_SKIP() << "cannot unshare a network namespace (needs root)";
+  if (unshare(CLONE_NEWNET) != 0) RELIGHT_SKIP_UNLESS_REQUIRED("cannot unshare a network namespace (needs root)");
   ASSERT_EQ(std::system("ip link set lo up"), 0);
   // A tap nothing reads: the E1.31 plugin binds to it, its multicast joins go nowhere (PITFALLS.md).
   const bool tap = std::system("ip tuntap add dev t0 mode tap 2>/dev/null && ip addr add 198.18.0.1/24 dev t0 && "

@@ -9,6 +9,8 @@
 // (the WireNpmInstall fixture), or a network namespace.
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
+
+#include "common/required_or_skip.h"
 #include <netinet/in.h>
 #include <sched.h>
 #include <signal.h>
@@ -133,15 +135,17 @@ void SendArtnetJunk() {
 
 TEST(WireSender, NpmSacnAndArtnetThroughOladReachTheEngineExactly) {
   for (const char* tool : {"/usr/bin/olad", "/usr/bin/ola_patch", "/usr/bin/ola_dev_info", "/usr/bin/setpriv"}) {
-    if (!Exists(tool)) GTEST_SKIP() << tool << " missing (apt-get install ola)";
+    if (!Exists(tool)) RELIGHT_SKIP_UNLESS_REQUIRED(tool << " missing (apt-get install ola)");
   }
-  if (std::system("node --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "node missing (scripts/setup.sh)";
+  if (std::system("node --version > /dev/null 2>&1") != 0) RELIGHT_SKIP_UNLESS_REQUIRED("node missing (scripts/setup.sh)");
   if (!Exists(kNodeDir + "/node_modules/sacn/package.json", R_OK) ||
       !Exists(kNodeDir + "/node_modules/artnet/package.json", R_OK)) {
-    GTEST_SKIP() << "the npm senders are not installed in " << kNodeDir
-                 << " (the WireNpmInstall test installs them; it could not reach the npm registry or its cache)";
+    RELIGHT_SKIP_UNLESS_REQUIRED("the npm senders are not installed in "
+                                 << kNodeDir
+                                 << " (the WireNpmInstall test installs them; it could not reach the npm "
+                                    "registry or its cache)");
   }
-  if (unshare(CLONE_NEWNET) != 0) GTEST_SKIP() << "cannot unshare a network namespace (needs root)";
+  if (unshare(CLONE_NEWNET) != 0) RELIGHT_SKIP_UNLESS_REQUIRED("cannot unshare a network namespace (needs root)");
   ASSERT_EQ(std::system("ip link set lo up"), 0);
   // A tap nothing reads: the plugins bind their devices to it, so their multicast joins and Art-Net
   // polls go nowhere (PITFALLS.md); both still listen on 0.0.0.0, so unicast to 127.0.0.1 arrives.

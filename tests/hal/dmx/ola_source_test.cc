@@ -5,6 +5,8 @@
 // exactly what was sent, survive olad restarting, and say clearly when olad
 // is not there. Skips without olad or without the right to unshare.
 #include <gtest/gtest.h>
+
+#include "common/required_or_skip.h"
 #include <sched.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -69,9 +71,9 @@ void Send(const std::string& csv) {
 
 TEST(DmxOlaSource, EndToEndThroughOlad) {
   if (!Exists("/usr/bin/olad") || !Exists("/usr/bin/ola_streaming_client") || !Exists("/usr/bin/setpriv")) {
-    GTEST_SKIP() << "olad not installed (apt-get install ola)";
+    RELIGHT_SKIP_UNLESS_REQUIRED("olad not installed (apt-get install ola)");
   }
-  if (unshare(CLONE_NEWNET) != 0) GTEST_SKIP() << "cannot unshare a network namespace (needs root)";
+  if (unshare(CLONE_NEWNET) != 0) RELIGHT_SKIP_UNLESS_REQUIRED("cannot unshare a network namespace (needs root)");
   ASSERT_EQ(std::system("ip link set lo up"), 0);
 
   char tmpl[] = "/tmp/relight-olad-XXXXXX";
