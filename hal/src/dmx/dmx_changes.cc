@@ -8,6 +8,11 @@ namespace {
 constexpr int kDefaultPanRangeDeg = 540;   // the usual moving-head ranges (PITFALLS.md)
 constexpr int kDefaultTiltRangeDeg = 270;
 
+// dimmer x scale / 2^15, scale in 0 .. 2^15 (exact at both ends).
+Q1_15 ScaledDimmer(Q1_15 dimmer, int32_t scale_q15) {
+  return Q1_15::FromRaw(static_cast<int16_t>((int32_t{dimmer.raw()} * scale_q15) >> 15));
+}
+
 }  // namespace
 
 DmxChanges::DmxChanges(const DmxPatch& patch)
@@ -32,6 +37,17 @@ bool DmxChanges::Lost(const Fixture& f, int64_t now_us) const {
   return f.received && now_us - f.last_frame_us > int64_t{patch_.loss_timeout_ms} * 1000;
 }
 
+int32_t DmxChanges::LossDimmerScaleQ15(const Fixture& f, int64_t now_us) const {
+  constexpr int32_t kAll = 1 << 15;
+  if (patch_.loss_policy == DmxLossPolicy::kHold || !Lost(f, now_us)) return kAll;
+  if (patch_.loss_policy == DmxLossPolicy::kBlackout) return 0;
+  // kFade: linear from the moment the signal counts as lost.
+  const int64_t since_us = now_us - f.last_frame_us - int64_t{patch_.loss_timeout_ms} * 1000;
+  const int64_t fade_us = int64_t{patch_.loss_fade_ms} * 1000;
+  if (since_us >= fade_us) return 0;
+  return static_cast<int32_t>(kAll - since_us * kAll / fade_us);
+}
+
 bool DmxChanges::LatestValues(size_t index, int64_t now_us, DmxFixtureValues* out) const {
   std::lock_guard<std::mutex> lock(mu_);
   if (index >= fixtures_.size()) return false;
@@ -40,14 +56,13 @@ bool DmxChanges::LatestValues(size_t index, int64_t now_us, DmxFixtureValues* ou
   // a visualiser: a console rebooting or a network hiccup should not black
   // out the picture someone is programming against, and most real fixtures
   // hold their last DMX look too, so holding shows what the rig would do.
-  // "blackout" is for rooms where a lost console must mean dark.
-  if (patch_.loss_policy == DmxLossPolicy::kBlackout && Lost(fixtures_[index], now_us)) {
-    out->dimmer = Q1_15::FromRaw(0);
-  }
+  // "fade" and "blackout" are for rooms where a lost console must mean dark:
+  // a fade shows it going, as a console's own blackout would.
+  out->dimmer = ScaledDimmer(out->dimmer, LossDimmerScaleQ15(fixtures_[index], now_us));
   return true;
 }
 
-size_t DmxChanges::Report(size_t index, bool blackout, Fixture& shown, ParamChange* out) const {
+size_t DmxChanges::Report(size_t index, int32_t dimmer_scale_q15, Fixture& shown, ParamChange* out) const {
   const DmxPersonality& p = patch_.fixtures[index].personality;
   const uint16_t fixture = static_cast<uint16_t>(index);
   const int64_t t = shown.last_frame_us;
@@ -65,8 +80,7 @@ size_t DmxChanges::Report(size_t index, bool blackout, Fixture& shown, ParamChan
     out[n++] = ParamChange::Angle(t, fixture, param, v);
   };
   const DmxFixtureValues& v = shown.values;
-  const bool dark = !v.shutter_open || blackout;
-  level(Param::kDimmer, dark ? Q1_15::FromRaw(0) : v.dimmer);
+  level(Param::kDimmer, v.shutter_open ? ScaledDimmer(v.dimmer, dimmer_scale_q15) : Q1_15::FromRaw(0));
   const int pan_deg = p.pan_range_deg > 0 ? p.pan_range_deg : kDefaultPanRangeDeg;
   const int tilt_deg = p.tilt_range_deg > 0 ? p.tilt_range_deg : kDefaultTiltRangeDeg;
   // What the type has no channel for is not reported: the bake's aim stays
@@ -102,8 +116,7 @@ size_t DmxChanges::Collect(int64_t now_us, ParamChange* out, size_t capacity) {
     for (size_t i = 0; i < snapshot_.size(); ++i) {
       Fixture& f = snapshot_[i];
       if (!f.received) continue;  // no frame for it yet: the bake's look stays
-      const bool blackout = patch_.loss_policy == DmxLossPolicy::kBlackout && Lost(f, now_us);
-      pending_count_ += Report(i, blackout, f, &pending_[pending_count_]);
+      pending_count_ += Report(i, LossDimmerScaleQ15(f, now_us), f, &pending_[pending_count_]);
     }
   }
   size_t n = 0;

@@ -54,9 +54,12 @@ class DmxChanges {
     int32_t shown[kParamCount] = {};  // last reported raw value per Param
   };
   bool Lost(const Fixture& f, int64_t now_us) const;
+  // What the loss-of-signal policy leaves of f's dimmer at now_us, Q15
+  // (32768 = all of it; 0 = dark).
+  int32_t LossDimmerScaleQ15(const Fixture& f, int64_t now_us) const;
   // Appends the parameters of `f` (values and last frame copied in) that
   // differ from what f.shown says was reported, and records them there.
-  size_t Report(size_t index, bool blackout, Fixture& f, ParamChange* out) const;
+  size_t Report(size_t index, int32_t dimmer_scale_q15, Fixture& f, ParamChange* out) const;
 
   const DmxPatch& patch_;
   mutable std::mutex mu_;

@@ -67,14 +67,19 @@ class Reader {
   }
 
   void Settings(const toml::table& t, DmxPatch* out) const {
-    CheckKeys(t, {"loss_of_signal", "loss_timeout_ms"}, "[dmx]");
+    CheckKeys(t, {"loss_of_signal", "loss_timeout_ms", "loss_fade_ms"}, "[dmx]");
     if (t.contains("loss_of_signal")) {
       const std::string p = Str(t, "loss_of_signal", "[dmx]");
       if (p == "hold") out->loss_policy = DmxLossPolicy::kHold;
       else if (p == "blackout") out->loss_policy = DmxLossPolicy::kBlackout;
-      else Fail(*t.get("loss_of_signal"), "[dmx]: loss_of_signal is \"hold\" or \"blackout\", got \"" + p + "\"");
+      else if (p == "fade") out->loss_policy = DmxLossPolicy::kFade;
+      else Fail(*t.get("loss_of_signal"), "[dmx]: loss_of_signal is \"hold\", \"fade\" or \"blackout\", got \"" + p + "\"");
     }
     out->loss_timeout_ms = Int(t, "loss_timeout_ms", "[dmx]", 50, 600000, out->loss_timeout_ms, false);
+    out->loss_fade_ms = Int(t, "loss_fade_ms", "[dmx]", 1, 600000, out->loss_fade_ms, false);
+    if (t.contains("loss_fade_ms") && out->loss_policy != DmxLossPolicy::kFade) {
+      Fail(*t.get("loss_fade_ms"), "[dmx]: loss_fade_ms is for loss_of_signal = \"fade\"");
+    }
   }
 
   void Fixture(const toml::table& t, DmxPatch* out) const {

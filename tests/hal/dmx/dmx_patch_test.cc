@@ -46,6 +46,18 @@ void ExpectError(const std::string& text, int line, const char* needle) {
   EXPECT_NE(st.message().find(needle), std::string::npos) << st.message();
 }
 
+TEST(DmxPatch, LossOfSignalFade) {
+  DmxPatch p;
+  const std::string fixture = Fixture("a", "relight-test-spot.toml", "16 bit", 1, 1);
+  ASSERT_TRUE(ParseDmxPatch("[dmx]\nloss_of_signal = \"fade\"\nloss_fade_ms = 2500\n" + fixture, kWhere, &p).ok());
+  EXPECT_EQ(p.loss_policy, DmxLossPolicy::kFade);
+  EXPECT_EQ(p.loss_fade_ms, 2500);
+  ExpectError("[dmx]\nloss_of_signal = \"hold\"\nloss_fade_ms = 2500\n" + fixture, 3,
+              "loss_fade_ms is for loss_of_signal = \"fade\"");
+  ExpectError("[dmx]\nloss_of_signal = \"fade\"\nloss_fade_ms = 0\n" + fixture, 3, "must be in 1..600000");
+  ExpectError("[dmx]\nloss_of_signal = \"dim\"\n" + fixture, 2, "\"hold\", \"fade\" or \"blackout\"");
+}
+
 TEST(DmxPatch, OverlapNamesBothFixtures) {
   // a: 1..13; b at 13 overlaps; its address is on line 12.
   ExpectError(Fixture("a", "relight-test-spot.toml", "16 bit", 1, 1) +

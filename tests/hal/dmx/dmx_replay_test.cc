@@ -176,6 +176,32 @@ TEST(DmxReplaySource, ShutterAndLossOfSignalActOnTheDimmer) {
   std::remove(path.c_str());
 }
 
+// "fade": once the signal counts as lost, the dimmer goes from its last value
+// to 0 in loss_fade_ms, linearly, then stays there.
+TEST(DmxReplaySource, LossOfSignalCanFadeOut) {
+  const std::string path = WriteTemp("fade.dmxrec", "0 1 10=ffff 21=ff\n2000 1 10=8000\n");
+  DmxReplaySource fade(TestPatch("[dmx]\nloss_of_signal = \"fade\"\nloss_timeout_ms = 100\nloss_fade_ms = 1000\n"),
+                       path);
+  ASSERT_TRUE(fade.Start().ok());
+  const std::vector<ParamChange> last = PollAll(fade, 2000);
+  const ParamChange* start = Find(last, 0, Param::kDimmer);
+  ASSERT_NE(start, nullptr);
+  const int32_t full = start->level.raw();  // 16-bit 0x8000: about half
+  EXPECT_NEAR(full, 16384, 1);
+  EXPECT_TRUE(PollAll(fade, 2000 + 100'000).empty());  // at the timeout: not yet lost
+  const auto dimmer_at = [&](int64_t t) {
+    const std::vector<ParamChange> c = PollAll(fade, t);
+    const ParamChange* d = Find(c, 0, Param::kDimmer);
+    return d == nullptr ? -1 : int32_t{d->level.raw()};
+  };
+  EXPECT_EQ(dimmer_at(2000 + 100'000 + 250'000), full * 3 / 4);
+  EXPECT_EQ(dimmer_at(2000 + 100'000 + 500'000), full / 2);
+  EXPECT_EQ(dimmer_at(2000 + 100'000 + 999'000), (full * 32) >> 15);  // 1 ms of 1000 left
+  EXPECT_EQ(dimmer_at(2000 + 100'000 + 1'000'000), 0);
+  EXPECT_TRUE(PollAll(fade, 5'000'000).empty()) << "faded out: nothing more to say";
+  std::remove(path.c_str());
+}
+
 TEST(DmxReplaySource, StartErrorsNameTheFile) {
   DmxReplaySource missing(TestPatch(), "/nonexistent/show.dmxrec");
   const Status st = missing.Start();

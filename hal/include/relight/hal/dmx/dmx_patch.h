@@ -3,8 +3,9 @@
 // for now; every error names file:line.
 //
 //   [dmx]
-//   loss_of_signal = "hold"       # or "blackout" (see ola_source.h)
+//   loss_of_signal = "hold"       # or "fade" (over loss_fade_ms), "blackout" (at once)
 //   loss_timeout_ms = 1000        # no frame for this long = signal lost
+//   loss_fade_ms = 3000           # "fade": dimmers from their last value to 0 in this time
 //
 //   [[dmx_fixture]]
 //   name = "spot_left"
@@ -23,7 +24,9 @@
 
 namespace relight::hal {
 
-enum class DmxLossPolicy : uint8_t { kHold, kBlackout };
+// What a fixture does once no frame reached it for loss_timeout_ms: keep its
+// last look, fade its dimmer to 0 over loss_fade_ms, or cut it to 0.
+enum class DmxLossPolicy : uint8_t { kHold, kBlackout, kFade };
 
 struct DmxFixturePatch {
   std::string name;
@@ -40,6 +43,7 @@ struct DmxPatch {
   std::vector<DmxFixturePatch> fixtures;
   DmxLossPolicy loss_policy = DmxLossPolicy::kHold;
   int loss_timeout_ms = 1000;
+  int loss_fade_ms = 3000;
   std::string where;
 };
 
