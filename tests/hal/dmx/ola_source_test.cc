@@ -64,8 +64,8 @@ bool WaitFor(Pred pred, int timeout_ms) {
   return pred();
 }
 
-void Send(const std::string& csv) {
-  const std::string cmd = "ola_streaming_client -u 1 -d " + csv + " 2>&1";
+void Send(const std::string& csv, int universe = 1) {
+  const std::string cmd = "ola_streaming_client -u " + std::to_string(universe) + " -d " + csv + " 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
 }
 
@@ -87,7 +87,7 @@ TEST(DmxOlaSource, EndToEndThroughOlad) {
   const Status parsed = ParseDmxPatch(
       "[[dmx_fixture]]\nname = \"spot\"\ntype = \"relight-test-spot.toml\"\nmode = \"16 bit\"\nuniverse = 1\n"
       "address = 10\n[[dmx_fixture]]\nname = \"par\"\ntype = \"relight-test-rgbw.toml\"\nmode = \"4 channel\"\n"
-      "universe = 1\naddress = 30\n",
+      "universe = 2\naddress = 30\n",
       where, &patch);
   ASSERT_TRUE(parsed.ok()) << parsed.message();
   DmxOlaSource source(std::move(patch), DmxOlaConfig{200});
@@ -103,14 +103,25 @@ TEST(DmxOlaSource, EndToEndThroughOlad) {
   ASSERT_TRUE(WaitFor([&] { return source.connected(); }, 2000));
 
   // Slots 1..9 zero; spot at 10: dimmer 0x1234, pan 0xABCD, tilt 0x01FF,
-  // C 255 M 0 Y 128, wheel 0 (open), zoom 255, shutter 255, gobo 0; par at 30.
+  // C 255 M 0 Y 128, wheel 0 (open), zoom 255, shutter 255, gobo 0. The par
+  // is on universe 2: universe 1's slots 30..33 (green) are not its.
   std::string csv = "0,0,0,0,0,0,0,0,0,18,52,171,205,1,255,255,0,128,0,255,255,0";
   for (int slot = 23; slot < 30; ++slot) csv += ",0";
-  csv += ",255,0,64,0";
+  csv += ",0,255,0,0";
+  std::string zeros;  // slots 1..29
+  for (int slot = 1; slot < 30; ++slot) zeros += "0,";
   // A console sends continuously; resend until the registration is through.
   DmxFixtureValues spot, par;
   ASSERT_TRUE(WaitFor([&] { Send(csv); return WaitFor([&] { return source.frames_received() > 0; }, 200); }, 8000))
       << "no frame from olad";
+  // Universe 2: the par, red; universe 3 (not patched): blue at the same slots, ignored.
+  ASSERT_TRUE(WaitFor([&] {
+    Send(zeros + "255,0,64,0", 2);
+    return WaitFor([&] { return source.LatestValues(1, MonotonicUs(), &par) && par.g.raw() == 0; }, 200);
+  }, 8000)) << "no frame of universe 2 from olad";
+  Send(zeros + "0,0,255,0", 3);
+  Send(csv, 1);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
   ASSERT_TRUE(source.LatestValues(0, MonotonicUs(), &spot));
   ASSERT_TRUE(source.LatestValues(1, MonotonicUs(), &par));
   EXPECT_EQ(spot.pan16, 0xABCD);
@@ -122,7 +133,8 @@ TEST(DmxOlaSource, EndToEndThroughOlad) {
   EXPECT_EQ(spot.beam_angle.raw(), 40 << 16);
   EXPECT_TRUE(spot.shutter_open);
   EXPECT_EQ(par.r.raw(), 32767);
-  EXPECT_EQ(par.g.raw(), 0);
+  EXPECT_EQ(par.g.raw(), 0) << "universe 1's slots reached the par of universe 2";
+  EXPECT_EQ(par.b.raw(), (64 * 257 * 32767 + 32767) / 65535) << "universe 3 (not patched) reached the par";
 
   // olad goes away: the look is held; it comes back: the source reconnects.
   olad.Kill();
