@@ -10,6 +10,7 @@
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 
+#include "common/child_output.h"
 #include "common/required_or_skip.h"
 #include <netinet/in.h>
 #include <sched.h>
@@ -106,6 +107,7 @@ class OlaDaemon {
   void Launch() {
     pid_ = fork();
     if (pid_ == 0) {
+      relight::testing::SendOutputTo(dir_ + "/olad.log");
       execl("/usr/bin/setpriv", "setpriv", "--reuid=nobody", "--regid=nogroup", "--clear-groups", "/usr/bin/olad",
             "-c", dir_.c_str(), "--no-http", "--no-register-with-dns-sd", "-l", "1", static_cast<char*>(nullptr));
       _exit(127);

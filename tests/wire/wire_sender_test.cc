@@ -10,6 +10,7 @@
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 
+#include "common/child_output.h"
 #include "common/required_or_skip.h"
 #include <netinet/in.h>
 #include <sched.h>
@@ -164,6 +165,7 @@ TEST(WireSender, NpmSacnAndArtnetThroughOladReachTheEngineExactly) {
   ASSERT_EQ(std::system(("chown -R nobody:nogroup " + dir).c_str()), 0);
   const pid_t olad = fork();
   if (olad == 0) {
+    relight::testing::SendOutputTo(dir + "/olad.log");
     execl("/usr/bin/setpriv", "setpriv", "--reuid=nobody", "--regid=nogroup", "--clear-groups", "/usr/bin/olad", "-c",
           dir.c_str(), "--no-http", "--no-register-with-dns-sd", "-l", "1", static_cast<char*>(nullptr));
     _exit(127);

@@ -86,7 +86,7 @@ TEST(DmxPatch, UnknownTypeAndMode) {
 
 TEST(DmxPatch, BadValuesAndKeys) {
   ExpectError(Fixture("a", "relight-test-spot.toml", "16 bit", 1, 0), 6, "'address' must be in 1..512");
-  ExpectError("[dmx]\nloss_of_signal = \"fade\"\n", 2, "hold");
+  ExpectError("[dmx]\nloss_of_signal = \"fadeout\"\n", 2, "hold");
   ExpectError("[[dmx_fixture]]\nname = \"a\"\nadress = 3\n", 3, "unknown key 'adress'");
   ExpectError(Fixture("a", "relight-test-rgbw.toml", "4 channel", 1, 1) +
                   Fixture("a", "relight-test-rgbw.toml", "4 channel", 1, 10),
