@@ -5,11 +5,11 @@
 # tests there with the suppressions in tests/sanitizers/ (system libraries
 # only, each with its reason). Installs clang if it is missing.
 #
-#   scripts/sanitize-test.sh             what CI runs: everything, the whole suite
-#   scripts/sanitize-test.sh --inputs    the readers of outside input that need
-#                                        no baker (bake file, patches, fixture
-#                                        types, replay, Modbus, DMX) and their
-#                                        fuzz corpora: a quick check
+#   scripts/sanitize-test.sh             everything, the whole suite (what CI runs)
+#   scripts/sanitize-test.sh --inputs    the readers of outside input (bake file,
+#                                        patches, fixture types, replay, Modbus,
+#                                        DMX, and the baker's: IES, LDT, OBJ,
+#                                        scene) and their fuzz corpora: a quick check
 #   scripts/sanitize-test.sh [--inputs] -R REGEX   ... only tests matching REGEX
 #
 # RELIGHT_JOBS=N builds and tests on N cores (default: all).
@@ -23,9 +23,9 @@ need_clang
 
 # Test binaries (and fuzz corpus replays) of --inputs.
 INPUT_TARGETS=(bake_io_test replay_plan_test hal_core_test hal_replay_test hal_modbus_test hal_modbus_abuse_test hal_dmx_test
-               hal_config_file_test
+               hal_config_file_test bounded_read_test
                bake_fuzz bake_sections_fuzz patch_fuzz dmx_patch_fuzz qxf_fuzz fixture_type_toml_fuzz
-               replay_fuzz param_text_fuzz modbus_request_fuzz dmx_frame_fuzz)
+               replay_fuzz param_text_fuzz modbus_request_fuzz dmx_frame_fuzz ies_fuzz ldt_fuzz obj_fuzz scene_fuzz)
 BUILD_ARGS=()
 CTEST_ARGS=()
 if [ "${1:-}" = "--inputs" ]; then
