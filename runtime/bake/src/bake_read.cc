@@ -44,12 +44,10 @@ class Parser {
     if (!e.empty()) return in_.Corrupt("sections LUMI", e);
     RELIGHT_RETURN_IF_ERROR(CheckSectionCount(bake));
     RELIGHT_RETURN_IF_ERROR(ParseReceivers(&bake));
-    if (!options_.hierarchy) {
-      *out = std::move(bake);
-      return Status::Ok();
+    if (options_.hierarchy && hierarchy_index_ != 0) {
+      RELIGHT_RETURN_IF_ERROR(DecodeHierarchy(&in_, hierarchy_index_, &bake));
     }
-    if (hierarchy_index_ != 0) RELIGHT_RETURN_IF_ERROR(DecodeHierarchy(&in_, hierarchy_index_, &bake));
-    if (grid_links_) {
+    if (options_.hierarchy && grid_links_) {
       uint32_t points = 0;  // each <= 2^24, at most 64 grids: no wrap
       for (const BakeGrid& grid : bake.grids) points += grid.point_count();
       RELIGHT_RETURN_IF_ERROR(DecodeGridLinks(&in_, hierarchy_index_ + 2, points, &bake));

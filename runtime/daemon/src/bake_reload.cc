@@ -19,12 +19,12 @@ BakeFileId StatBakeFile(const std::string& path) {
 }
 
 Status ReloadBake(const std::string& path, Engine* engine, BakeFileId* loaded, BakeReload* result,
-                  const EngineOptions& options) {
+                  const EngineOptions& options, bool force) {
   *result = BakeReload::kUnchanged;
   // Taken before reading: a file changing while it is read gets a new id
   // and is read again at the next SIGHUP.
   const BakeFileId now = StatBakeFile(path);
-  if (now.size >= 0 && now == *loaded) return Status::Ok();
+  if (!force && now.size >= 0 && now == *loaded) return Status::Ok();
   Bake bake;
   if (Status st = ReadBake(path, &bake); !st.ok()) {
     // ReadBake's messages mostly name the part, not always the file.

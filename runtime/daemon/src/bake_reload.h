@@ -40,8 +40,9 @@ enum class BakeReload { kUnchanged, kTaken };
 // (kNotFound, kIoError, kCorrupt, kUnsupported from ReadBake;
 // kInvalidArgument for other luminaires) names the file and what is wrong;
 // the engine and `*loaded` are untouched. The new bake opens with `options`
-// (the ones the running bake was opened with).
+// (the ones the running bake was opened with); `force` reads it even if it
+// is the file loaded (the options changed).
 Status ReloadBake(const std::string& path, Engine* engine, BakeFileId* loaded, BakeReload* result,
-                  const EngineOptions& options = {});
+                  const EngineOptions& options = {}, bool force = false);
 
 }  // namespace relight::daemon

@@ -198,10 +198,7 @@ struct Daemon::Impl {
   // options changed). False when the new bake was refused.
   bool ReloadBakeFile(bool force = false) {
     BakeReload result = BakeReload::kUnchanged;
-    const BakeFileId before = bake_id;
-    if (force) bake_id = BakeFileId{};
-    if (Status st = ReloadBake(config.bake_path, &engine, &bake_id, &result, engine_options); !st.ok()) {
-      bake_id = before;
+    if (Status st = ReloadBake(config.bake_path, &engine, &bake_id, &result, engine_options, force); !st.ok()) {
       ++stats.reload_failures;
       Log(LogLevel::kError, "relightd: bake reload refused, keeping the running bake: %s", st.ToString().c_str());
       return false;
@@ -243,7 +240,6 @@ struct Daemon::Impl {
                               "the bake's hierarchy, which could not be read");
         return;
       }
-      if (!fatal.ok()) return;
     }
     hal::Patch old = patch;
     for (auto& s : patch_sources) s->Stop();  // frees ports and devices for the new sources
