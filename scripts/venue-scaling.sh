@@ -10,7 +10,9 @@
 # with the model, are the same for any rig; the solves grow with faces x
 # luminaires. Each bake is capped at RELIGHT_VENUE_CAP seconds (default 900);
 # a capped size is reported and left out of the fit. Wall times on a shared
-# machine: say the load average next to them (printed).
+# machine: say the load average next to them (printed). RELIGHT_VENUE_ARGS
+# adds arguments to every bake (e.g. "--clusters off" for the old start from
+# every pair of surfaces, "--absolute-links").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}; shift || true
@@ -20,8 +22,9 @@ cap=${RELIGHT_VENUE_CAP:-900}
 tmp=${TMPDIR:-/tmp}/venue-scaling
 mkdir -p "$tmp"
 rows="$tmp/rows.txt"; : >"$rows"
-echo "| triangles | faces | patches | links | form factors s | solve s | wall s | peak MB | load avg |"
-echo "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |"
+read -r -a extra <<<"${RELIGHT_VENUE_ARGS:-}"
+echo "| triangles | faces | patches | links | cluster links | form factors s | solve s | wall s | peak MB | load avg |"
+echo "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |"
 for t in "${sizes[@]}"; do
   gen=$(python3 scripts/make-venue.py --triangles "$t" --luminaires "$lum" -o "$tmp/v$t")
   faces=$(sed -n 's/.* triangles, \([0-9]*\) faces.*/\1/p' <<<"$gen")
@@ -29,20 +32,21 @@ for t in "${sizes[@]}"; do
   load=$(cut -d' ' -f1 /proc/loadavg)
   rc=0
   /usr/bin/time -f "%e %M" -o "$tmp/time$t" timeout "$cap" \
-    "$build/baker/relight-bake" "$tmp/v$t/venue.toml" -o "$tmp/v$t.rlb" --solver hierarchical \
+    "$build/baker/relight-bake" "$tmp/v$t/venue.toml" -o "$tmp/v$t.rlb" --solver hierarchical "${extra[@]}" \
     >"$tmp/log$t" 2>&1 </dev/null || rc=$?
   if [ "$rc" -ne 0 ]; then
-    echo "| $tris | $faces | — | — | — | — | > $cap (stopped, exit $rc) | — | $load |"
+    echo "| $tris | $faces | — | — | — | — | — | > $cap (stopped, exit $rc) | — | $load |"
     continue
   fi
   read -r wall kb <"$tmp/time$t"
   summary=$(grep "^relight-bake: venue:" "$tmp/log$t")
   patches=$(sed -n 's/.*venue: \([0-9]*\) patches.*/\1/p' <<<"$summary")
   links=$(sed -n 's/.* nodes, \([0-9]*\) links.*/\1/p' <<<"$summary")
+  clinks=$(sed -n 's/.* clusters with \([0-9]*\) cluster links.*/\1/p' <<<"$summary")
   ff=$(sed -n 's/.*form factors \([0-9.]*\) s.*/\1/p' <<<"$summary")
   solve=$(sed -n 's/.*solve \([0-9.]*\) s.*/\1/p' <<<"$summary")
   mb=$((kb / 1024))
-  echo "| $tris | $faces | $patches | $links | $ff | $solve | $wall | $mb | $load |"
+  echo "| $tris | $faces | $patches | $links | ${clinks:-0} | $ff | $solve | $wall | $mb | $load |"
   echo "$faces $wall $mb $ff $links" >>"$rows"
 done
 python3 - "$rows" <<'PY'

@@ -6,6 +6,8 @@
 #include <string>
 #include <type_traits>
 
+#include "cluster_links.h"
+#include "cluster_tree.h"
 #include "hierarchy.h"
 #include "hierarchy_links.h"
 #include "link_brightness.h"
@@ -80,6 +82,50 @@ std::vector<HierarchyLink> ShareLinks(const WorkShare& share,
   return links;
 }
 
+// One refinement: from every pair of surfaces, or from the root cluster
+// when `tree` has clusters (its surface pairs then refined as usual). The
+// surface links are shared between ranks; every rank finds the same
+// cluster links (the walk and its rays are deterministic).
+struct RefinedLinks {
+  std::vector<HierarchyLink> surface;
+  std::vector<ClusterLink> cluster;
+  size_t pairs_visited = 0;
+};
+RefinedLinks Refine(const BakerCore& core, const Hierarchy& h, const ClusterTree& tree,
+                    const std::vector<double>& brightness, const std::vector<double>& epsilon,
+                    Progress* progress) {
+  const BakeOptions& o = core.options;
+  const int rank = o.share ? o.share->rank() : 0, ranks = o.share ? o.share->ranks() : 1;
+  RefinedLinks out;
+  if (tree.empty()) {
+    out.surface = RefineLinks(core.mesh, *core.visibility, core.samples, h, brightness, epsilon,
+                              o.adaptive_visibility, o.threads, progress, rank, ranks);
+  } else {
+    const NodeSamples samples(h, core.samples);
+    ClusteredRefinement c = RefineClusters(h, tree, samples, *core.visibility, brightness,
+                                           epsilon, o.threads, progress);
+    out.surface = RefineNodePairs(core.mesh, *core.visibility, core.samples, h, samples,
+                                  std::move(c.node_pairs), brightness, epsilon,
+                                  o.adaptive_visibility, o.threads, progress, rank, ranks);
+    out.cluster = std::move(c.links);
+    out.pairs_visited = c.pairs_visited;
+  }
+  if (ranks > 1) out.surface = ShareLinks(*o.share, out.surface);
+  return out;
+}
+
+bool UseClusters(const BakeOptions& o, const Hierarchy& h) {
+  switch (o.clusters) {
+    case ClusterMode::kOn:
+      return true;
+    case ClusterMode::kOff:
+      return false;
+    case ClusterMode::kAuto:
+      break;
+  }
+  return h.surface_count() >= kAutoClusterSurfaces;
+}
+
 void BuildHierarchicalSolver(BakerCore* core, Progress* progress) {
   const Mesh& mesh = core->mesh;
   const BakeOptions& o = core->options;
@@ -89,6 +135,7 @@ void BuildHierarchicalSolver(BakerCore* core, Progress* progress) {
   }
   const Stopwatch ff_time;
   Hierarchy h = BuildHierarchy(mesh);
+  ClusterTree tree = UseClusters(o, h) ? BuildClusterTree(h) : ClusterTree{};
   const std::vector<double> brightness =
       RefinementBrightness(core->scene, mesh, h, core->direct);
   // Relative to the area-weighted mean exitance (the roots' brightness):
@@ -100,17 +147,14 @@ void BuildHierarchicalSolver(BakerCore* core, Progress* progress) {
     flux += root.area_m2 * brightness[h.root(s)];
   }
   const double epsilon = o.link_epsilon * flux / area;
-  const int rank = o.share ? o.share->rank() : 0, ranks = o.share ? o.share->ranks() : 1;
   std::vector<Rgb> rho;
   rho.reserve(mesh.patch_count());
   for (const Patch& p : mesh.patches) rho.push_back(p.reflectance);
   HierarchicalSolveOptions solve;
   solve.tolerance = o.solve_tolerance;
   solve.threads = o.threads;
-  std::vector<HierarchyLink> links =
-      RefineLinks(mesh, *core->visibility, core->samples, h, brightness, epsilon,
-                  o.adaptive_visibility, o.threads, progress, rank, ranks);
-  if (ranks > 1) links = ShareLinks(*o.share, links);
+  RefinedLinks links =
+      Refine(*core, h, tree, brightness, std::vector<double>(h.nodes.size(), epsilon), progress);
   // Receiver-relative: a first solve over these links, then every link again
   // against its receiver's own light (link_brightness.h). Every rank solves
   // the same links alike, so the shares still make one set.
@@ -118,18 +162,21 @@ void BuildHierarchicalSolver(BakerCore* core, Progress* progress) {
   const bool lit = std::any_of(peak_direct.begin(), peak_direct.end(), [](double e) { return e > 0; });
   if (o.receiver_relative_links && lit && o.link_epsilon > 0) {
     const RefinementEstimate estimate = [&] {
-      const HierarchicalSolver first(h, std::move(links), rho, solve);
+      const HierarchicalSolver first(h, std::move(links.surface), rho, solve,
+                                     ClusterSystem{tree, std::move(links.cluster)});
       return ReceiverRelativeEstimate(mesh, h, first, peak_direct, o.link_epsilon, epsilon);
     }();
-    links = RefineLinks(mesh, *core->visibility, core->samples, h, estimate.brightness,
-                        estimate.bound, o.adaptive_visibility, o.threads, progress, rank, ranks);
-    if (ranks > 1) links = ShareLinks(*o.share, links);
+    links = Refine(*core, h, tree, estimate.brightness, estimate.bound, progress);
   }
   core->report.nodes = h.nodes.size();
-  core->report.links = links.size();
+  core->report.links = links.surface.size();
+  core->report.clusters = tree.clusters.size();
+  core->report.cluster_links = links.cluster.size();
+  core->report.cluster_pairs_visited = links.pairs_visited;
   core->report.form_factor_seconds += ff_time.seconds();
-  core->hierarchical_solver =
-      std::make_unique<HierarchicalSolver>(std::move(h), std::move(links), rho, solve);
+  core->hierarchical_solver = std::make_unique<HierarchicalSolver>(
+      std::move(h), std::move(links.surface), rho, solve,
+      ClusterSystem{std::move(tree), std::move(links.cluster)});
 }
 
 }  // namespace

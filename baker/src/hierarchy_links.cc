@@ -222,36 +222,28 @@ double NodeVisibleFraction(const Hierarchy& h, const NodeSamples& samples, const
   return total > 0 ? seen / total : static_cast<double>(visible) / valid;
 }
 
-std::vector<HierarchyLink> RefineLinks(const Mesh& mesh, const Visibility& vis,
-                                       const PatchSampleSets& patch_samples, const Hierarchy& h,
-                                       const std::vector<double>& brightness,
-                                       const std::vector<double>& epsilon, bool adaptive,
-                                       int threads, Progress* progress, int share_rank,
-                                       int share_ranks) {
-  const NodeSamples samples(h, patch_samples);
+std::vector<HierarchyLink> RefineNodePairs(const Mesh& mesh, const Visibility& vis,
+                                           const PatchSampleSets& patch_samples,
+                                           const Hierarchy& h, const NodeSamples& samples,
+                                           std::vector<NodePair> node_pairs,
+                                           const std::vector<double>& brightness,
+                                           const std::vector<double>& epsilon, bool adaptive,
+                                           int threads, Progress* progress, int share_rank,
+                                           int share_ranks) {
   const Refiner refiner(mesh, vis, patch_samples, h, samples, brightness, epsilon, adaptive);
-
-  // Every pair of surfaces that can face each other; the biggest first, so
-  // the workers finish together.
-  struct RootPair {
+  // The biggest first, so the workers finish together.
+  struct WeightedPair {
     uint32_t p, q;
     double weight;
   };
-  std::vector<RootPair> pairs;
-  const size_t surfaces = h.surface_count();
-  for (size_t a = 0; a < surfaces; ++a) {
-    for (size_t b = a + 1; b < surfaces; ++b) {
-      const HierarchyNode& na = h.nodes[h.root(a)];
-      const HierarchyNode& nb = h.nodes[h.root(b)];
-      if (Behind(na, nb) || Behind(nb, na)) continue;
-      pairs.push_back({h.root(a), h.root(b), na.area_m2 * nb.area_m2});
-    }
-  }
-  std::sort(pairs.begin(), pairs.end(),
-            [](const RootPair& x, const RootPair& y) {
-              return x.weight != y.weight ? x.weight > y.weight
-                                          : (x.p != y.p ? x.p < y.p : x.q < y.q);
-            });
+  std::vector<WeightedPair> pairs;
+  pairs.reserve(node_pairs.size());
+  for (const NodePair& n : node_pairs)
+    pairs.push_back({n.p, n.q, h.nodes[n.p].area_m2 * h.nodes[n.q].area_m2});
+  std::vector<NodePair>().swap(node_pairs);
+  std::sort(pairs.begin(), pairs.end(), [](const WeightedPair& x, const WeightedPair& y) {
+    return x.weight != y.weight ? x.weight > y.weight : (x.p != y.p ? x.p < y.p : x.q < y.q);
+  });
   // A distributed bake's share: dealt round the ranks by size, so each gets
   // big and small pairs alike.
   if (share_ranks > 1) {
@@ -263,7 +255,7 @@ std::vector<HierarchyLink> RefineLinks(const Mesh& mesh, const Visibility& vis,
   }
   // Progress in units of the pairs' area products (a rough measure of their work).
   double total_weight = 0;
-  for (const RootPair& r : pairs) total_weight += r.weight;
+  for (const WeightedPair& r : pairs) total_weight += r.weight;
   std::vector<size_t> units(pairs.size());
   size_t total_units = 0;
   for (size_t k = 0; k < pairs.size(); ++k) {
@@ -291,6 +283,28 @@ std::vector<HierarchyLink> RefineLinks(const Mesh& mesh, const Visibility& vis,
     return x.p != y.p ? x.p < y.p : x.q < y.q;
   });
   return links;
+}
+
+std::vector<HierarchyLink> RefineLinks(const Mesh& mesh, const Visibility& vis,
+                                       const PatchSampleSets& patch_samples, const Hierarchy& h,
+                                       const std::vector<double>& brightness,
+                                       const std::vector<double>& epsilon, bool adaptive,
+                                       int threads, Progress* progress, int share_rank,
+                                       int share_ranks) {
+  // Every pair of surfaces that can face each other.
+  std::vector<NodePair> pairs;
+  const size_t surfaces = h.surface_count();
+  for (size_t a = 0; a < surfaces; ++a) {
+    for (size_t b = a + 1; b < surfaces; ++b) {
+      const HierarchyNode& na = h.nodes[h.root(a)];
+      const HierarchyNode& nb = h.nodes[h.root(b)];
+      if (Behind(na, nb) || Behind(nb, na)) continue;
+      pairs.push_back({h.root(a), h.root(b)});
+    }
+  }
+  return RefineNodePairs(mesh, vis, patch_samples, h, NodeSamples(h, patch_samples),
+                         std::move(pairs), brightness, epsilon, adaptive, threads, progress,
+                         share_rank, share_ranks);
 }
 
 std::vector<HierarchyLink> RefineLinks(const Mesh& mesh, const Visibility& vis,

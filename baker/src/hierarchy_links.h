@@ -58,6 +58,10 @@ NodePairFactors UnoccludedNodeFactors(const Hierarchy& h, const NodeSamples& sam
 double NodeVisibleFraction(const Hierarchy& h, const NodeSamples& samples, const Visibility& vis,
                            uint32_t p, uint32_t q, bool adaptive = false);
 
+struct NodePair {
+  uint32_t p = 0, q = 0;  // surface nodes on different surfaces, p < q
+};
+
 // adaptive_visibility: 256 rays for the pairs whose 16 disagree (measured
 // in docs/hierarchy.md: it barely moves the living room's errors and
 // costs about 3x the link time, so it is off by default).
@@ -74,6 +78,17 @@ std::vector<HierarchyLink> RefineLinks(const Mesh& mesh, const Visibility& vis,
                                        const std::vector<double>& epsilon,
                                        bool adaptive_visibility, int threads, Progress* progress,
                                        int share_rank = 0, int share_ranks = 1);
+// The same from given node pairs (the clusters' refinement hands its
+// surface pairs here), shared between ranks and ordered as RefineLinks does.
+std::vector<HierarchyLink> RefineNodePairs(const Mesh& mesh, const Visibility& vis,
+                                           const PatchSampleSets& patch_samples,
+                                           const Hierarchy& h, const NodeSamples& samples,
+                                           std::vector<NodePair> pairs,
+                                           const std::vector<double>& brightness,
+                                           const std::vector<double>& epsilon,
+                                           bool adaptive_visibility, int threads,
+                                           Progress* progress, int share_rank = 0,
+                                           int share_ranks = 1);
 // One bound for every receiver (BF refinement's absolute epsilon).
 std::vector<HierarchyLink> RefineLinks(const Mesh& mesh, const Visibility& vis,
                                        const PatchSampleSets& patch_samples, const Hierarchy& h,

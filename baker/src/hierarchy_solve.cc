@@ -23,8 +23,12 @@ using ConstRow = Eigen::Map<const Eigen::ArrayXd>;
 
 HierarchicalSolver::HierarchicalSolver(Hierarchy hierarchy, std::vector<HierarchyLink> links,
                                        const std::vector<Rgb>& rho,
-                                       const HierarchicalSolveOptions& options)
-    : hierarchy_(std::move(hierarchy)), links_(std::move(links)), options_(options) {
+                                       const HierarchicalSolveOptions& options,
+                                       ClusterSystem clusters)
+    : hierarchy_(std::move(hierarchy)),
+      links_(std::move(links)),
+      clusters_(std::move(clusters)),
+      options_(options) {
   const auto n_patches = static_cast<Eigen::Index>(rho.size());
   for (int c = 0; c < 3; ++c) {
     rho_[c].resize(n_patches);
@@ -147,6 +151,13 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
   // irradiance a + b u + c v over the node.
   std::vector<double> s(n * ws, 0.0), b(n * ws, 0.0), mu(n * ws, 0.0), mv(n * ws, 0.0);
   std::vector<double> g0(n * ws, 0.0), gu(n * ws, 0.0), gv(n * ws, 0.0);
+  // With clusters: ge, irradiance per node over the cluster links (constant
+  // over the node); out_bins, in_bins: each cluster's six bins, leaving and
+  // arriving (cluster_tree.h).
+  const bool clustered = !clusters_.tree.empty();
+  const size_t bin_rows = kClusterBins * clusters_.tree.clusters.size();
+  std::vector<double> ge(clustered ? n * ws : 0, 0.0);
+  std::vector<double> out_bins(bin_rows * ws, 0.0), in_bins(bin_rows * ws, 0.0);
   const auto row = [ws](std::vector<double>& v, size_t k) { return Row(v.data() + k * ws, ws); };
   const auto crow = [ws](const std::vector<double>& v, size_t k) {
     return ConstRow(v.data() + k * ws, ws);
@@ -181,6 +192,74 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
   for (size_t sf = 0; sf < surfaces; ++sf)
     pull(hierarchy_.surface_begin[sf], hierarchy_.surface_begin[sf + 1]);
 
+  // The light over the cluster links from the current exitance, into ge.
+  const auto cluster_pass = [&]() {
+    const ClusterTree& tree = clusters_.tree;
+    const auto bin = [&](std::vector<double>& v, size_t cluster, int k) {
+      return Row(v.data() + (kClusterBins * cluster + static_cast<size_t>(k)) * ws, ws);
+    };
+    // Leaving: members' exitance x area into the bins, children before parents.
+    for (size_t c = tree.clusters.size(); c-- > 0;) {
+      for (int k = 0; k < kClusterBins; ++k) bin(out_bins, c, k).setZero();
+      for (uint32_t child : tree.clusters[c].children) {
+        if (IsCluster(child)) {
+          for (int k = 0; k < kClusterBins; ++k)
+            bin(out_bins, c, k) += bin(out_bins, ClusterIndex(child), k);
+          continue;
+        }
+        const HierarchyNode& root = nodes[child];
+        const auto& weights = tree.surface_bins[root.surface];
+        for (int k = 0; k < kClusterBins; ++k)
+          if (weights[static_cast<size_t>(k)] > 0)
+            bin(out_bins, c, k) += (weights[static_cast<size_t>(k)] * root.area_m2) * crow(b, child);
+      }
+    }
+    std::fill(in_bins.begin(), in_bins.end(), 0.0);
+    std::fill(ge.begin(), ge.end(), 0.0);
+    Eigen::ArrayXd light(w);
+    // Light from element `from` towards direction `dir` (unit, leaving it),
+    // times `scale` (ClusterLink), onto element `to`, arriving from -dir.
+    const auto carry = [&](uint32_t from, uint32_t to, const Vec3& dir, double scale) {
+      if (scale == 0) return;
+      if (IsCluster(from)) {
+        const size_t c = ClusterIndex(from);
+        light.setZero();
+        for (int i = 0; i < 3; ++i)
+          if (dir[i] != 0) light += (scale * std::abs(dir[i])) * bin(out_bins, c, ClusterBin(i, dir[i]));
+      } else {
+        light = scale * crow(b, from);
+      }
+      if (IsCluster(to)) {
+        const size_t c = ClusterIndex(to);
+        for (int i = 0; i < 3; ++i)
+          if (dir[i] != 0) bin(in_bins, c, ClusterBin(i, -dir[i])) += std::abs(dir[i]) * light;
+      } else {
+        const HierarchyNode& node = nodes[to];
+        const double cosine = -(node.normal[0] * dir[0] + node.normal[1] * dir[1] + node.normal[2] * dir[2]);
+        if (cosine > 0) row(ge, to) += cosine * light;
+      }
+    };
+    for (const ClusterLink& l : clusters_.links) {
+      const Vec3 back{-l.direction[0], -l.direction[1], -l.direction[2]};
+      carry(l.a, l.b, l.direction, l.a_to_b);
+      carry(l.b, l.a, back, l.b_to_a);
+    }
+    // Arriving: down to the members, parents before children.
+    for (size_t c = 0; c < tree.clusters.size(); ++c) {
+      for (uint32_t child : tree.clusters[c].children) {
+        if (IsCluster(child)) {
+          for (int k = 0; k < kClusterBins; ++k)
+            bin(in_bins, ClusterIndex(child), k) += bin(in_bins, c, k);
+          continue;
+        }
+        const auto& weights = tree.surface_bins[nodes[child].surface];
+        for (int k = 0; k < kClusterBins; ++k)
+          if (weights[static_cast<size_t>(k)] > 0)
+            row(ge, child) += weights[static_cast<size_t>(k)] * bin(in_bins, c, k);
+      }
+    }
+  };
+
   // Every node of surface sf gathers from the current exitance of the others
   // (a planar surface never sees itself), and the light is pushed down: a
   // leaf's row of g0 is then its mean irradiance.
@@ -209,6 +288,7 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
       // About the surface's origin rather than the node's centre, so
       // that a child can add its parent's coefficients as they are.
       if (inner) a -= centre_uv_[k][0] * du + centre_uv_[k][1] * dv;
+      if (clustered) a += crow(ge, k);
     }
     // Push: irradiance gathered at a node reaches all of its area; a leaf
     // takes the linear irradiance at its centre (its mean over the leaf).
@@ -236,6 +316,7 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
   // The residual r = S + rho K B - B of the current B, largest over the
   // leaves, relative to each column's peak exitance (one extra gather).
   const auto residual = [&]() {
+    if (clustered) cluster_pass();
     Eigen::ArrayXd r = Eigen::ArrayXd::Zero(w), peak = Eigen::ArrayXd::Zero(w);
     for (size_t sf = 0; sf < surfaces; ++sf) {
       const size_t begin = hierarchy_.surface_begin[sf], end = hierarchy_.surface_begin[sf + 1];
@@ -262,6 +343,7 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
     ++sweep;
     change.setZero();
     peak.setZero();
+    if (clustered) cluster_pass();
     // Gauss-Seidel over surfaces: each gathers the latest exitance of the others.
     for (size_t sf = 0; sf < surfaces; ++sf) {
       const size_t begin = hierarchy_.surface_begin[sf], end = hierarchy_.surface_begin[sf + 1];

@@ -18,6 +18,8 @@
 #include <atomic>
 #include <vector>
 
+#include "cluster_links.h"
+#include "cluster_tree.h"
 #include "hierarchy.h"
 #include "hierarchy_links.h"
 #include "relight/baker/scene.h"
@@ -42,11 +44,21 @@ struct HierarchicalSolveOptions {
   int threads = 0;  // 0 = every core
 };
 
+// Clusters above the quadtrees and their links (cluster_links.h); empty
+// when the refinement started from every pair of surfaces.
+struct ClusterSystem {
+  ClusterTree tree;
+  std::vector<ClusterLink> links;
+};
+
 class HierarchicalSolver {
  public:
-  // rho: per mesh patch RGB reflectance.
+  // rho: per mesh patch RGB reflectance. With clusters, each sweep first
+  // carries the light over the cluster links (from the previous sweep's
+  // exitance: Jacobi for that small part), as constant irradiance per node.
   HierarchicalSolver(Hierarchy hierarchy, std::vector<HierarchyLink> links,
-                     const std::vector<Rgb>& rho, const HierarchicalSolveOptions& options);
+                     const std::vector<Rgb>& rho, const HierarchicalSolveOptions& options,
+                     ClusterSystem clusters = {});
 
   // Solves M = S + rho_c K M for the emitted exitance S (patches x k); M is
   // the total exitance (lm/m^2) per patch.
@@ -59,6 +71,7 @@ class HierarchicalSolver {
   const Eigen::VectorXd& reflectance(int channel) const { return rho_[channel]; }
   const Hierarchy& hierarchy() const { return hierarchy_; }
   const std::vector<HierarchyLink>& links() const { return links_; }
+  const ClusterSystem& clusters() const { return clusters_; }
   // Most sweeps any column block needed so far.
   int max_sweeps_used() const { return max_sweeps_used_.load(); }
   // Largest relative residual any column block stopped at so far.
@@ -77,6 +90,7 @@ class HierarchicalSolver {
 
   Hierarchy hierarchy_;
   std::vector<HierarchyLink> links_;
+  ClusterSystem clusters_;
   HierarchicalSolveOptions options_;
   std::array<Eigen::VectorXd, 3> rho_;
   std::array<int, 3> same_as_{};  // channel whose reflectances this one repeats (itself if none)

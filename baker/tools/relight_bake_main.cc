@@ -72,6 +72,7 @@ struct Args {
   std::string direct;  // empty: the scene's mode (exact)
   int threads = 0;
   std::string solver = "auto";
+  std::string clusters = "auto";
   double patch_size_m = 0;  // 0: the scene's
   double link_epsilon = relight::baker::BakeOptions().link_epsilon;
   double grid_link_epsilon = relight::baker::BakeOptions().grid_link_epsilon;
@@ -140,6 +141,11 @@ std::string SolverSummary(const relight::baker::BakeReport& r) {
                 "%.1e of peak)",
                 r.nodes, r.links, r.sweeps, r.residual);
   std::string out = text;
+  if (r.clusters > 0) {
+    std::snprintf(text, sizeof text, ", %zu clusters with %zu cluster links", r.clusters,
+                  r.cluster_links);
+    out += text;
+  }
   if (r.grid_links > 0) {
     std::snprintf(text, sizeof text, ", %zu grid links (%.2f per point, %.2f s)", r.grid_links,
                   static_cast<double>(r.grid_links) / static_cast<double>(r.grid_points),
@@ -195,6 +201,8 @@ int Run(const Args& args, const relight::baker::DistributedSession& mpi) {
   options.threads = args.threads;
   if (args.solver == "dense") options.solver = relight::baker::SolverKind::kDense;
   if (args.solver == "hierarchical") options.solver = relight::baker::SolverKind::kHierarchical;
+  if (args.clusters == "on") options.clusters = relight::baker::ClusterMode::kOn;
+  if (args.clusters == "off") options.clusters = relight::baker::ClusterMode::kOff;
   options.link_epsilon = args.link_epsilon;
   options.receiver_relative_links = !args.absolute_links;
   options.grid_link_epsilon = args.grid_link_epsilon;
@@ -319,6 +327,14 @@ int main(int argc, char** argv) {
                  "hierarchical (quadtrees and links, near-linear) or auto (dense up to 4000 "
                  "patches)")
       ->check(CLI::IsMember({"auto", "dense", "hierarchical"}))
+      ->capture_default_str();
+  app.add_option("--clusters", args.clusters,
+                 "hierarchical: start the refinement from volume clusters above the surfaces "
+                 "(on; cost about n log n in the input faces) or from every pair of surfaces "
+                 "(off); auto: on from " +
+                     std::to_string(relight::baker::kAutoClusterSurfaces) +
+                     " input surfaces (docs/venue.md)")
+      ->check(CLI::IsMember({"auto", "on", "off"}))
       ->capture_default_str();
   app.add_option("--patch-size", args.patch_size_m,
                  "patch edge length in metres, instead of the scene's patch_size")

@@ -1,6 +1,7 @@
 // Scenes built in code for the radiosity tests: quads, triangles, boxes.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "relight/baker/scene.h"
@@ -34,6 +35,21 @@ inline std::vector<Surface> InwardBox(Vec3 lo, Vec3 hi, Rgb floor_rho, Rgb wall_
       Quad("wall -y", {x0, y0, z0}, {x0, y0, z1}, {x1, y0, z1}, {x1, y0, z0}, wall_rho),
       Quad("wall +y", {x0, y1, z0}, {x1, y1, z0}, {x1, y1, z1}, {x0, y1, z1}, wall_rho),
   };
+}
+
+// The six faces of an axis-aligned solid box, CCW seen from outside.
+inline std::vector<Surface> OutwardBox(const std::string& name, Vec3 lo, Vec3 hi, Rgb rho) {
+  const double x0 = lo[0], y0 = lo[1], z0 = lo[2], x1 = hi[0], y1 = hi[1], z1 = hi[2];
+  std::vector<Surface> faces = {
+      Quad("-z", {x0, y0, z0}, {x0, y1, z0}, {x1, y1, z0}, {x1, y0, z0}, rho),
+      Quad("+z", {x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}, rho),
+      Quad("-x", {x0, y0, z0}, {x0, y0, z1}, {x0, y1, z1}, {x0, y1, z0}, rho),
+      Quad("+x", {x1, y0, z0}, {x1, y1, z0}, {x1, y1, z1}, {x1, y0, z1}, rho),
+      Quad("-y", {x0, y0, z0}, {x1, y0, z0}, {x1, y0, z1}, {x0, y0, z1}, rho),
+      Quad("+y", {x0, y1, z0}, {x0, y1, z1}, {x1, y1, z1}, {x1, y1, z0}, rho),
+  };
+  for (Surface& f : faces) f.name = name + "/" + f.name;
+  return faces;
 }
 
 // A closed unit box, uniform reflectance: the B = E / (1 - rho) test scene.

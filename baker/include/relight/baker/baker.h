@@ -28,6 +28,12 @@ namespace relight::baker {
 // up to kAutoDenseMaxPatches patches, hierarchical above.
 enum class SolverKind { kAuto, kDense, kHierarchical };
 constexpr size_t kAutoDenseMaxPatches = 4000;
+// Hierarchical: where refinement starts. Off: from every pair of input
+// surfaces (S²/2 pairs). On: from volume clusters above the surfaces
+// (Smits, Arvo & Greenberg 1994; docs/venue.md), cost about n log n. Auto:
+// on from kAutoClusterSurfaces input surfaces.
+enum class ClusterMode { kAuto, kOn, kOff };
+constexpr size_t kAutoClusterSurfaces = 2000;
 
 class WorkShare;  // relight/baker/work_share.h
 // relight-bake's --compress-error default (a fraction of peak; see
@@ -52,6 +58,7 @@ struct BakeOptions {
   bool receiver_relative_links = true;
   // Hierarchical: 256 visibility rays (not 16) for node pairs whose 16 rays disagree.
   bool adaptive_visibility = false;
+  ClusterMode clusters = ClusterMode::kAuto;
   // Distributed bake: this process refines its share of the links and swaps
   // them with the others (relight/baker/work_share.h). Null: all of them here.
   const WorkShare* share = nullptr;
@@ -90,6 +97,8 @@ struct BakeReport {
   double form_factor_seconds = 0, solve_seconds = 0, total_seconds = 0;
   SolverKind solver = SolverKind::kDense;  // the one used (never kAuto)
   size_t nodes = 0, links = 0;             // hierarchical: quadtree nodes and links
+  size_t clusters = 0, cluster_links = 0;  // hierarchical, clustered: volume clusters, their links
+  size_t cluster_pairs_visited = 0;        // ... element pairs the refinement looked at
   size_t grid_links = 0;                   // stored hierarchy: node-to-grid-point links
   double grid_link_seconds = 0;            // ... and the time they took
   int sweeps = 0;                          // hierarchical: most Gauss-Seidel sweeps of a solve

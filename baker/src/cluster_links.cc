@@ -1,0 +1,243 @@
+#include "cluster_links.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "form_factors.h"
+#include "parallel_for.h"
+#include "radiosity_vec.h"
+
+namespace relight::baker {
+namespace {
+
+using namespace radiosity_vec;
+
+constexpr double kPi = 3.14159265358979323846;
+// Relative error of a cluster link's light when the elements are far apart
+// against their size: the six bins' orientation (exact square to the axes,
+// up to ~0.7 for a member at 45 degrees to all three) and 16 rays' visibility.
+constexpr double kClusterError = 0.2;
+
+// Every corner of the box at or behind the node's plane: nothing in the box
+// can exchange light with the node.
+bool BoxBehind(const HierarchyNode& node, const Vec3& lo, const Vec3& hi) {
+  const double tol = 1e-9 * node.diameter_m;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3 x{(corner & 1) ? hi[0] : lo[0], (corner & 2) ? hi[1] : lo[1],
+                 (corner & 4) ? hi[2] : lo[2]};
+    if (Dot(node.normal, x - node.centre) > tol) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+double SurfaceFactor(const Hierarchy& h, const ClusterTree& tree, uint32_t node, uint32_t cluster) {
+  const HierarchyNode& n = h.nodes[node];
+  const Vec3 c = ElementCentre(h, tree, cluster);
+  if (Dot(n.normal, c - n.centre) <= 0) return -1;
+  const Vec3 facing = Normalized(n.centre - c);
+  return PointToPolygonFormFactor(c, facing, n.corners.data(), n.corner_count, n.normal);
+}
+
+namespace {
+
+class ClusterRefiner {
+ public:
+  ClusterRefiner(const Hierarchy& h, const ClusterTree& tree, const std::vector<double>& brightness,
+                 const std::vector<double>& epsilon)
+      : h_(h), tree_(tree), brightness_(brightness), epsilon_(epsilon) {
+    // Per cluster: the members' brightness x area summed (what its light can
+    // be at most, x 1/(pi d²)), and the tightest of their roots' bounds (a
+    // root's bound is already the least of its leaves').
+    const size_t count = tree.clusters.size();
+    flux_.assign(count, 0);
+    bound_.assign(count, 0);
+    for (size_t c = count; c-- > 0;) {
+      const Cluster& cluster = tree.clusters[c];
+      double flux = 0, bound = std::numeric_limits<double>::max();
+      for (uint32_t child : cluster.children) {
+        flux += Flux(child);
+        bound = std::min(bound, Bound(child));
+      }
+      flux_[c] = flux;
+      bound_[c] = bound;
+    }
+  }
+
+  void Visit(uint32_t x, uint32_t y, ClusteredRefinement* out) {
+    ++out->pairs_visited;
+    if (x == y) {
+      if (!IsCluster(x)) return;  // a planar surface does not see itself
+      const Cluster& c = tree_.clusters[ClusterIndex(x)];
+      Visit(c.children[0], c.children[0], out);
+      Visit(c.children[1], c.children[1], out);
+      Visit(c.children[0], c.children[1], out);
+      return;
+    }
+    if (!IsCluster(x) && !IsCluster(y)) {
+      out->node_pairs.push_back({std::min(x, y), std::max(x, y)});
+      return;
+    }
+    if (Hidden(x, y) || Hidden(y, x)) return;
+    const double rx = ElementRadius(h_, tree_, x), ry = ElementRadius(h_, tree_, y);
+    if (Linkable(x, y, rx, ry)) {
+      out->links.push_back({std::min(x, y), std::max(x, y)});
+      return;
+    }
+    // Split the larger; a surface leaf cannot split. (Splitting a cluster
+    // first wherever it can, so that surfaces meet clusters only whole,
+    // gave twice the surface links on the venue: docs/venue.md.)
+    const bool x_splits = Splits(x) && (!Splits(y) || rx >= ry);
+    const uint32_t parent = x_splits ? x : y, other = x_splits ? y : x;
+    if (IsCluster(parent)) {
+      for (uint32_t child : tree_.clusters[ClusterIndex(parent)].children) Visit(child, other, out);
+    } else {
+      const HierarchyNode& node = h_.nodes[parent];
+      for (uint32_t c = node.first_child; c < node.first_child + node.child_count; ++c)
+        Visit(c, other, out);
+    }
+  }
+
+ private:
+  double Flux(uint32_t e) const {
+    return IsCluster(e) ? flux_[ClusterIndex(e)] : brightness_[e] * h_.nodes[e].area_m2;
+  }
+  double Bound(uint32_t e) const { return IsCluster(e) ? bound_[ClusterIndex(e)] : epsilon_[e]; }
+  bool Splits(uint32_t e) const { return IsCluster(e) || !h_.nodes[e].leaf(); }
+
+  // Both directions' error estimates (cluster_links.h) within their
+  // receivers' bounds.
+  bool Linkable(uint32_t x, uint32_t y, double rx, double ry) const {
+    const Vec3 cx = ElementCentre(h_, tree_, x), cy = ElementCentre(h_, tree_, y);
+    const double r = Length(cy - cx);
+    if (!(r > rx + ry)) return false;
+    return Error(y, x, r, rx) <= Bound(x) && Error(x, y, r, ry) <= Bound(y);
+  }
+  // Of `from`'s light arriving at `to` (radius r_to, centres r apart).
+  double Error(uint32_t from, uint32_t to, double r, double r_to) const {
+    if (IsCluster(from)) {
+      const double r_from = ElementRadius(h_, tree_, from);
+      return Flux(from) / (kPi * r * r) * std::max(kClusterError, 2 * (r_to + r_from) / r);
+    }
+    const double f = SurfaceFactor(h_, tree_, from, to);
+    if (f < 0) return std::numeric_limits<double>::infinity();
+    return brightness_[from] * f * std::max(kClusterError, 2 * r_to / r);
+  }
+  // y (a cluster) wholly behind node x.
+  bool Hidden(uint32_t x, uint32_t y) const {
+    if (IsCluster(x) || !IsCluster(y)) return false;
+    const Cluster& c = tree_.clusters[ClusterIndex(y)];
+    return BoxBehind(h_.nodes[x], c.lo, c.hi);
+  }
+
+  const Hierarchy& h_;
+  const ClusterTree& tree_;
+  const std::vector<double>& brightness_;
+  const std::vector<double>& epsilon_;
+  std::vector<double> flux_, bound_;
+};
+
+// Up to kClusterSamples points of an element with their normals.
+int ElementPoints(const Hierarchy& h, const ClusterTree& tree, const NodeSamples& samples,
+                  uint32_t e, std::array<ClusterPoint, kClusterSamples>* out) {
+  if (IsCluster(e)) {
+    *out = tree.clusters[ClusterIndex(e)].samples;
+    return kClusterSamples;
+  }
+  const std::vector<PatchSample>& s = samples.fine(e);
+  const int count = static_cast<int>(std::min<size_t>(s.size(), kClusterSamples));
+  for (int k = 0; k < count; ++k) (*out)[static_cast<size_t>(k)] = {s[static_cast<size_t>(k)].point, h.nodes[e].normal};
+  return count;
+}
+
+// Fraction of rays between the two elements' points that arrive, over
+// pairs of points whose surfaces face each other (a member facing away
+// takes no part in this link's light: the bins weigh orientation, and a ray
+// from the back of a box's face would start inside the box). 16 pairs in a
+// fixed spread first; if none of them face each other, the first 16 of all
+// pairs that do; none at all: nothing passes.
+double VisibleFraction(const Hierarchy& h, const ClusterTree& tree, const NodeSamples& samples,
+                       const Visibility& vis, uint32_t a, uint32_t b) {
+  std::array<ClusterPoint, kClusterSamples> pa, pb;
+  const int na = ElementPoints(h, tree, samples, a, &pa);
+  const int nb = ElementPoints(h, tree, samples, b, &pb);
+  const auto faces = [](const ClusterPoint& x, const ClusterPoint& y) {
+    return Dot(x.normal, y.point - x.point) > 0 && Dot(y.normal, x.point - y.point) > 0;
+  };
+  int valid = 0, visible = 0;
+  const auto cast = [&](const ClusterPoint& x, const ClusterPoint& y) {
+    ++valid;
+    if (vis.Visible(vis.Offset(x.point, x.normal), vis.Offset(y.point, y.normal))) ++visible;
+  };
+  const int rays = std::max(na, nb);
+  for (int k = 0; k < rays && na > 0 && nb > 0; ++k) {
+    // Paired by a fixed stride coprime with 16, so the rays spread.
+    const ClusterPoint& x = pa[static_cast<size_t>(k % na)];
+    const ClusterPoint& y = pb[static_cast<size_t>((7 * k + 3) % nb)];
+    if (faces(x, y)) cast(x, y);
+  }
+  for (int i = 0; i < na && valid == 0; ++i) {
+    for (int j = 0; j < nb && valid < kClusterSamples; ++j) {
+      if (faces(pa[static_cast<size_t>(i)], pb[static_cast<size_t>(j)]))
+        cast(pa[static_cast<size_t>(i)], pb[static_cast<size_t>(j)]);
+    }
+  }
+  return valid > 0 ? static_cast<double>(visible) / valid : 0.0;
+}
+
+}  // namespace
+
+Vec3 ElementCentre(const Hierarchy& h, const ClusterTree& tree, uint32_t e) {
+  return IsCluster(e) ? tree.clusters[ClusterIndex(e)].centre : h.nodes[e].centre;
+}
+
+double ElementRadius(const Hierarchy& h, const ClusterTree& tree, uint32_t e) {
+  if (IsCluster(e)) return tree.clusters[ClusterIndex(e)].radius_m;
+  const HierarchyNode& n = h.nodes[e];
+  double r = 0;
+  for (int k = 0; k < n.corner_count; ++k)
+    r = std::max(r, Length(n.corners[static_cast<size_t>(k)] - n.centre));
+  return r;
+}
+
+ClusteredRefinement RefineClusters(const Hierarchy& h, const ClusterTree& tree,
+                                   const NodeSamples& samples, const Visibility& vis,
+                                   const std::vector<double>& brightness,
+                                   const std::vector<double>& epsilon, int threads,
+                                   Progress* progress) {
+  ClusteredRefinement out;
+  if (tree.empty()) return out;
+  // The walk itself casts no ray and is quick next to what follows.
+  ClusterRefiner refiner(h, tree, brightness, epsilon);
+  const uint32_t root = tree.root_element(h);
+  refiner.Visit(root, root, &out);
+  std::sort(out.links.begin(), out.links.end(), [](const ClusterLink& x, const ClusterLink& y) {
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  });
+  if (progress) progress->Begin("links (clusters)", out.links.size());
+  ParallelFor(out.links.size(), ResolveThreads(threads), [&](size_t k, int) {
+    ClusterLink& l = out.links[k];
+    const Vec3 d = ElementCentre(h, tree, l.b) - ElementCentre(h, tree, l.a);
+    const double r2 = Dot(d, d);
+    l.direction = Normalized(d);
+    const double v = VisibleFraction(h, tree, samples, vis, l.a, l.b);
+    const auto factor = [&](uint32_t from, uint32_t to) {
+      return IsCluster(from) ? v / (kPi * r2)
+                             : v * std::max(0.0, SurfaceFactor(h, tree, from, to));
+    };
+    l.a_to_b = factor(l.a, l.b);
+    l.b_to_a = factor(l.b, l.a);
+    if (progress) progress->Advance();
+  });
+  if (progress) progress->End();
+  // Pairs that no ray joins carry nothing.
+  out.links.erase(std::remove_if(out.links.begin(), out.links.end(),
+                                 [](const ClusterLink& l) { return !(l.a_to_b > 0 || l.b_to_a > 0); }),
+                  out.links.end());
+  return out;
+}
+
+}  // namespace relight::baker
