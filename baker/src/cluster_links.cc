@@ -89,7 +89,8 @@ class ClusterRefiner {
     }
     // Split the larger; a surface leaf cannot split. (Splitting a cluster
     // first wherever it can, so that surfaces meet clusters only whole,
-    // gave twice the surface links on the venue: docs/venue.md.)
+    // gave 2.2x the links between the hall's surfaces and the seats on the
+    // 3000-triangle venue: docs/venue.md.)
     const bool x_splits = Splits(x) && (!Splits(y) || rx >= ry);
     const uint32_t parent = x_splits ? x : y, other = x_splits ? y : x;
     if (IsCluster(parent)) {

@@ -274,6 +274,13 @@ int Run(const Args& args, const relight::baker::DistributedSession& mpi) {
                     args.recompress_path.c_str(), PeakMegabytes(), wrote);
       }
       PrintCompression(report);
+      if (report.cluster_links > 0 && !args.no_hierarchy) {
+        std::printf(
+            "relight-bake: note: the stored hierarchy holds the %zu surface links, not the %zu "
+            "cluster links: light sources placed on surfaces at run time miss the little light "
+            "those carry (docs/venue.md)\n",
+            report.links, report.cluster_links);
+      }
     }
     return 0;
   }

@@ -33,6 +33,17 @@ for n in 1 2 4; do
   fi
   echo "mpi_bake_test: -np $n: $got (same as one process)"
 done
+# The clustered refinement too: every rank walks the clusters alike and
+# shares only the surface pairs it hands on.
+"${bake[@]}" --clusters on -o "$tmp/cplain.rlb"
+want=$(sha256sum <"$tmp/cplain.rlb" | cut -d' ' -f1)
+"$mpiexec" -np 2 --oversubscribe "${bake[@]}" --clusters on -o "$tmp/cnp2.rlb"
+got=$(sha256sum <"$tmp/cnp2.rlb" | cut -d' ' -f1)
+if [ "$got" != "$want" ]; then
+  echo "mpi_bake_test: --clusters on -np 2 wrote $got, one process $want"
+  exit 1
+fi
+echo "mpi_bake_test: --clusters on -np 2: $got (same as one process)"
 # Only rank 0 writes: no part files left behind.
-if ls "$tmp" | grep -v '^\(plain\|np[124]\)\.rlb$'; then echo "stray files"; exit 1; fi
+if ls "$tmp" | grep -v '^c\?\(plain\|np[124]\)\.rlb$'; then echo "stray files"; exit 1; fi
 echo "mpi_bake_test: ok"
