@@ -78,7 +78,8 @@ class ClusterRefiner {
       return;
     }
     if (!IsCluster(x) && !IsCluster(y)) {
-      out->node_pairs.push_back({std::min(x, y), std::max(x, y)});
+      // Pairs that cannot face each other would come back without links.
+      if (NodesCanFace(h_, x, y)) out->node_pairs.push_back({std::min(x, y), std::max(x, y)});
       return;
     }
     if (Hidden(x, y) || Hidden(y, x)) return;

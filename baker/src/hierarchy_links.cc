@@ -172,6 +172,10 @@ class Refiner {
 
 }  // namespace
 
+bool NodesCanFace(const Hierarchy& h, uint32_t p, uint32_t q) {
+  return !Behind(h.nodes[p], h.nodes[q]) && !Behind(h.nodes[q], h.nodes[p]);
+}
+
 NodePairFactors UnoccludedNodeFactors(const Hierarchy& h, const NodeSamples& samples, uint32_t p,
                                       uint32_t q) {
   NodePairFactors out;
@@ -231,18 +235,13 @@ std::vector<HierarchyLink> RefineNodePairs(const Mesh& mesh, const Visibility& v
                                            int threads, Progress* progress, int share_rank,
                                            int share_ranks) {
   const Refiner refiner(mesh, vis, patch_samples, h, samples, brightness, epsilon, adaptive);
-  // The biggest first, so the workers finish together.
-  struct WeightedPair {
-    uint32_t p, q;
-    double weight;
-  };
-  std::vector<WeightedPair> pairs;
-  pairs.reserve(node_pairs.size());
-  for (const NodePair& n : node_pairs)
-    pairs.push_back({n.p, n.q, h.nodes[n.p].area_m2 * h.nodes[n.q].area_m2});
-  std::vector<NodePair>().swap(node_pairs);
-  std::sort(pairs.begin(), pairs.end(), [](const WeightedPair& x, const WeightedPair& y) {
-    return x.weight != y.weight ? x.weight > y.weight : (x.p != y.p ? x.p < y.p : x.q < y.q);
+  // The biggest first, so the workers finish together. Sorted in place (a
+  // venue's walk hands on tens of millions of pairs).
+  std::vector<NodePair>& pairs = node_pairs;
+  const auto weight = [&h](const NodePair& n) { return h.nodes[n.p].area_m2 * h.nodes[n.q].area_m2; };
+  std::sort(pairs.begin(), pairs.end(), [&weight](const NodePair& x, const NodePair& y) {
+    const double wx = weight(x), wy = weight(y);
+    return wx != wy ? wx > wy : (x.p != y.p ? x.p < y.p : x.q < y.q);
   });
   // A distributed bake's share: dealt round the ranks by size, so each gets
   // big and small pairs alike.
@@ -255,19 +254,18 @@ std::vector<HierarchyLink> RefineNodePairs(const Mesh& mesh, const Visibility& v
   }
   // Progress in units of the pairs' area products (a rough measure of their work).
   double total_weight = 0;
-  for (const WeightedPair& r : pairs) total_weight += r.weight;
-  std::vector<size_t> units(pairs.size());
+  for (const NodePair& r : pairs) total_weight += weight(r);
+  const auto units = [&](size_t k) {
+    return 1 + static_cast<size_t>(std::llround(1e5 * weight(pairs[k]) / total_weight));
+  };
   size_t total_units = 0;
-  for (size_t k = 0; k < pairs.size(); ++k) {
-    units[k] = 1 + static_cast<size_t>(std::llround(1e5 * pairs[k].weight / total_weight));
-    total_units += units[k];
-  }
+  for (size_t k = 0; k < pairs.size(); ++k) total_units += units(k);
   if (progress) progress->Begin("links (hierarchical)", total_units);
   const int workers = ResolveThreads(threads);
   std::vector<std::vector<HierarchyLink>> per_worker(static_cast<size_t>(workers));
   ParallelFor(pairs.size(), workers, [&](size_t k, int worker) {
     refiner.Refine(pairs[k].p, pairs[k].q, &per_worker[static_cast<size_t>(worker)]);
-    if (progress) progress->Advance(units[k]);
+    if (progress) progress->Advance(units(k));
   });
   if (progress) progress->End();
 
@@ -296,9 +294,7 @@ std::vector<HierarchyLink> RefineLinks(const Mesh& mesh, const Visibility& vis,
   const size_t surfaces = h.surface_count();
   for (size_t a = 0; a < surfaces; ++a) {
     for (size_t b = a + 1; b < surfaces; ++b) {
-      const HierarchyNode& na = h.nodes[h.root(a)];
-      const HierarchyNode& nb = h.nodes[h.root(b)];
-      if (Behind(na, nb) || Behind(nb, na)) continue;
+      if (!NodesCanFace(h, h.root(a), h.root(b))) continue;
       pairs.push_back({h.root(a), h.root(b)});
     }
   }

@@ -62,6 +62,9 @@ struct NodePair {
   uint32_t p = 0, q = 0;  // surface nodes on different surfaces, p < q
 };
 
+// False when one node lies wholly behind the other's plane: no light passes.
+bool NodesCanFace(const Hierarchy& h, uint32_t p, uint32_t q);
+
 // adaptive_visibility: 256 rays for the pairs whose 16 disagree (measured
 // in docs/hierarchy.md: it barely moves the living room's errors and
 // costs about 3x the link time, so it is off by default).
