@@ -151,7 +151,8 @@ int ElementPoints(const Hierarchy& h, const ClusterTree& tree, const NodeSamples
   }
   const std::vector<PatchSample>& s = samples.fine(e);
   const int count = static_cast<int>(std::min<size_t>(s.size(), kClusterSamples));
-  for (int k = 0; k < count; ++k) (*out)[static_cast<size_t>(k)] = {s[static_cast<size_t>(k)].point, h.nodes[e].normal};
+  for (int k = 0; k < count; ++k)
+    (*out)[static_cast<size_t>(k)] = {s[static_cast<size_t>(k)].point, h.nodes[e].normal};
   return count;
 }
 
@@ -227,8 +228,7 @@ ClusteredRefinement RefineClusters(const Hierarchy& h, const ClusterTree& tree,
     l.direction = Normalized(d);
     const double v = VisibleFraction(h, tree, samples, vis, l.a, l.b);
     const auto factor = [&](uint32_t from, uint32_t to) {
-      return IsCluster(from) ? v / (kPi * r2)
-                             : v * std::max(0.0, SurfaceFactor(h, tree, from, to));
+      return IsCluster(from) ? v / (kPi * r2) : v * std::max(0.0, SurfaceFactor(h, tree, from, to));
     };
     l.a_to_b = factor(l.a, l.b);
     l.b_to_a = factor(l.b, l.a);
@@ -236,9 +236,10 @@ ClusteredRefinement RefineClusters(const Hierarchy& h, const ClusterTree& tree,
   });
   if (progress) progress->End();
   // Pairs that no ray joins carry nothing.
-  out.links.erase(std::remove_if(out.links.begin(), out.links.end(),
-                                 [](const ClusterLink& l) { return !(l.a_to_b > 0 || l.b_to_a > 0); }),
-                  out.links.end());
+  out.links.erase(
+      std::remove_if(out.links.begin(), out.links.end(),
+                     [](const ClusterLink& l) { return !(l.a_to_b > 0 || l.b_to_a > 0); }),
+      out.links.end());
   return out;
 }
 

@@ -43,11 +43,11 @@ struct ClusterPoint {
 };
 
 struct Cluster {
-  Vec3 lo{}, hi{};       // bounding box of the members' corners, m
-  Vec3 centre{};         // area centroid of the members, m
-  double radius_m = 0;   // a sphere about centre holding every member
-  double area_m2 = 0;    // members' total area
-  std::array<uint32_t, 2> children{};  // elements: clusters or surface roots
+  Vec3 lo{}, hi{};                              // bounding box of the members' corners, m
+  Vec3 centre{};                                // area centroid of the members, m
+  double radius_m = 0;                          // a sphere about centre holding every member
+  double area_m2 = 0;                           // members' total area
+  std::array<uint32_t, 2> children{};           // elements: clusters or surface roots
   uint32_t first_member = 0, member_count = 0;  // into ClusterTree::members
   std::array<ClusterPoint, kClusterSamples> samples{};
 };

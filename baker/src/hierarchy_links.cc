@@ -238,7 +238,9 @@ std::vector<HierarchyLink> RefineNodePairs(const Mesh& mesh, const Visibility& v
   // The biggest first, so the workers finish together. Sorted in place (a
   // venue's walk hands on tens of millions of pairs).
   std::vector<NodePair>& pairs = node_pairs;
-  const auto weight = [&h](const NodePair& n) { return h.nodes[n.p].area_m2 * h.nodes[n.q].area_m2; };
+  const auto weight = [&h](const NodePair& n) {
+    return h.nodes[n.p].area_m2 * h.nodes[n.q].area_m2;
+  };
   std::sort(pairs.begin(), pairs.end(), [&weight](const NodePair& x, const NodePair& y) {
     const double wx = weight(x), wy = weight(y);
     return wx != wy ? wx > wy : (x.p != y.p ? x.p < y.p : x.q < y.q);

@@ -211,7 +211,8 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
         const auto& weights = tree.surface_bins[root.surface];
         for (int k = 0; k < kClusterBins; ++k)
           if (weights[static_cast<size_t>(k)] > 0)
-            bin(out_bins, c, k) += (weights[static_cast<size_t>(k)] * root.area_m2) * crow(b, child);
+            bin(out_bins, c, k) +=
+                (weights[static_cast<size_t>(k)] * root.area_m2) * crow(b, child);
       }
     }
     std::fill(in_bins.begin(), in_bins.end(), 0.0);
@@ -225,7 +226,8 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
         const size_t c = ClusterIndex(from);
         light.setZero();
         for (int i = 0; i < 3; ++i)
-          if (dir[i] != 0) light += (scale * std::abs(dir[i])) * bin(out_bins, c, ClusterBin(i, dir[i]));
+          if (dir[i] != 0)
+            light += (scale * std::abs(dir[i])) * bin(out_bins, c, ClusterBin(i, dir[i]));
       } else {
         light = scale * crow(b, from);
       }
@@ -235,7 +237,8 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
           if (dir[i] != 0) bin(in_bins, c, ClusterBin(i, -dir[i])) += std::abs(dir[i]) * light;
       } else {
         const HierarchyNode& node = nodes[to];
-        const double cosine = -(node.normal[0] * dir[0] + node.normal[1] * dir[1] + node.normal[2] * dir[2]);
+        const double cosine =
+            -(node.normal[0] * dir[0] + node.normal[1] * dir[1] + node.normal[2] * dir[2]);
         if (cosine > 0) row(ge, to) += cosine * light;
       }
     };

@@ -2,8 +2,9 @@
 // holds every surface once inside bounds that contain it, the clustered
 // refinement links disjoint clusters the same way on any thread count, and
 // its solve agrees with the dense (float64 LU) solve of the same mesh:
-// measured here, not recorded (how the links scale: docs/venue.md). The scene is the grey room with 20 solid boxes standing on
-// its floor in rows (126 surfaces: a small audience of seats).
+// measured here, not recorded (how the links scale: docs/venue.md). The
+// scene is the grey room with 20 solid boxes standing on its floor in rows
+// (126 surfaces: a small audience of seats).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -30,9 +31,9 @@ Scene SeatRows() {
   for (int i = 0; i < 4; ++i) {
     for (int j = 0; j < 5; ++j) {
       const double x = 0.5 + 0.9 * i, y = 0.45 + 0.9 * j;
-      for (Surface& f : test_scenes::OutwardBox("seat " + std::to_string(i) + "," + std::to_string(j),
-                                                {x, y, 0}, {x + 0.3, y + 0.3, 0.4},
-                                                {0.4, 0.4, 0.4}))
+      for (Surface& f :
+           test_scenes::OutwardBox("seat " + std::to_string(i) + "," + std::to_string(j), {x, y, 0},
+                                   {x + 0.3, y + 0.3, 0.4}, {0.4, 0.4, 0.4}))
         scene.surfaces.push_back(std::move(f));
     }
   }
@@ -199,7 +200,8 @@ TEST_F(ClusteredSolve, LinksDisjointElementsApartAndIsDeterministic) {
 }
 
 TEST_F(ClusteredSolve, AgreesWithTheDenseSolvePerSurface) {
-  const auto plain = CompareBySurface(*scene_, *mesh_, plain_->vertex_luminance, want_->vertex_luminance);
+  const auto plain =
+      CompareBySurface(*scene_, *mesh_, plain_->vertex_luminance, want_->vertex_luminance);
   const auto clustered =
       CompareBySurface(*scene_, *mesh_, clustered_->vertex_luminance, want_->vertex_luminance);
   ASSERT_EQ(clustered.size(), scene_->surfaces.size());
@@ -207,10 +209,11 @@ TEST_F(ClusteredSolve, AgreesWithTheDenseSolvePerSurface) {
   for (size_t k = 0; k < clustered.size(); ++k) {
     const SurfaceAgreement& a = clustered[k];
     if (a.peak <= 0) continue;  // a box's underside on the floor
-    if (a.max_abs > 0.005)  // the surfaces that stand out, for the log
-      std::printf("  %s: mean |d| %.4f %%, max %.4f %%, signed %.4f %% (without clusters max %.4f %%)\n",
-                  a.name.c_str(), 100 * a.mean_abs, 100 * a.max_abs, 100 * a.mean_signed,
-                  100 * plain[k].max_abs);
+    if (a.max_abs > 0.005)      // the surfaces that stand out, for the log
+      std::printf(
+          "  %s: mean |d| %.4f %%, max %.4f %%, signed %.4f %% (without clusters max %.4f %%)\n",
+          a.name.c_str(), 100 * a.mean_abs, 100 * a.max_abs, 100 * a.mean_signed,
+          100 * plain[k].max_abs);
     worst_mean = std::max(worst_mean, a.mean_abs);
     worst_max = std::max(worst_max, a.max_abs);
     worst_signed = std::max(worst_signed, std::abs(a.mean_signed));
@@ -220,9 +223,10 @@ TEST_F(ClusteredSolve, AgreesWithTheDenseSolvePerSurface) {
   ::testing::Test::RecordProperty("clustered_worst_max", std::to_string(worst_max));
   ::testing::Test::RecordProperty("clustered_worst_signed", std::to_string(worst_signed));
   ::testing::Test::RecordProperty("plain_worst_max", std::to_string(plain_worst_max));
-  std::printf("clustered vs dense: worst surface mean |d| %.4f %%, max %.4f %%, |signed| %.4f %%; "
-              "without clusters: max %.4f %%\n",
-              100 * worst_mean, 100 * worst_max, 100 * worst_signed, 100 * plain_worst_max);
+  std::printf(
+      "clustered vs dense: worst surface mean |d| %.4f %%, max %.4f %%, |signed| %.4f %%; "
+      "without clusters: max %.4f %%\n",
+      100 * worst_mean, 100 * worst_max, 100 * worst_signed, 100 * plain_worst_max);
   // Measured 0.36 % / 0.68 % / 0.25 % (one seat's side next to a wall; the
   // surface links alone: docs/hierarchy.md's 0.3 % / 1 % / 0.1 %).
   EXPECT_LE(worst_mean, 0.005);
