@@ -116,12 +116,11 @@ class ClusterRefiner {
     const Vec3 cx = ElementCentre(h_, tree_, x), cy = ElementCentre(h_, tree_, y);
     const double r = Length(cy - cx);
     if (!(r > rx + ry)) return false;
-    return Error(y, x, r, rx) <= Bound(x) && Error(x, y, r, ry) <= Bound(y);
+    return Error(y, x, r, ry, rx) <= Bound(x) && Error(x, y, r, rx, ry) <= Bound(y);
   }
-  // Of `from`'s light arriving at `to` (radius r_to, centres r apart).
-  double Error(uint32_t from, uint32_t to, double r, double r_to) const {
+  // Of `from`'s light arriving at `to` (radii r_from, r_to; centres r apart).
+  double Error(uint32_t from, uint32_t to, double r, double r_from, double r_to) const {
     if (IsCluster(from)) {
-      const double r_from = ElementRadius(h_, tree_, from);
       return Flux(from) / (kPi * r * r) * std::max(kClusterError, 2 * (r_to + r_from) / r);
     }
     const double f = SurfaceFactor(h_, tree_, from, to);

@@ -4,9 +4,12 @@
 #include <cmath>
 
 #include "parallel_for.h"
+#include "radiosity_vec.h"
 
 namespace relight::baker {
 namespace {
+
+using radiosity_vec::Dot;
 
 // Columns per block: a block's three node arrays stay within the shared
 // cache for tens of thousands of nodes, and a luminaire's terms split into
@@ -237,8 +240,7 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
           if (dir[i] != 0) bin(in_bins, c, ClusterBin(i, -dir[i])) += std::abs(dir[i]) * light;
       } else {
         const HierarchyNode& node = nodes[to];
-        const double cosine =
-            -(node.normal[0] * dir[0] + node.normal[1] * dir[1] + node.normal[2] * dir[2]);
+        const double cosine = -Dot(node.normal, dir);
         if (cosine > 0) row(ge, to) += cosine * light;
       }
     };
