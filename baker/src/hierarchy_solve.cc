@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gather_kernel.h"
 #include "parallel_for.h"
 #include "radiosity_vec.h"
 
@@ -146,7 +147,9 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
   const std::vector<HierarchyNode>& nodes = hierarchy_.nodes;
   const size_t n = nodes.size();
   const Eigen::Index w = task.width;
-  const size_t ws = static_cast<size_t>(w);
+  // A row holds the block's w columns, padded with zeros to whole vectors
+  // for the gather kernel; the padding stays zero throughout.
+  const size_t ws = (static_cast<size_t>(w) + kGatherLanes - 1) / kGatherLanes * kGatherLanes;
   const Eigen::VectorXd& rho = rho_[task.channel];
   // Node-major blocks: row k of a block is node k's w columns. b: exitance
   // (a node's is its leaves' area mean); mu, mv: its first moment about the
@@ -157,6 +160,7 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
   // With clusters: ge, irradiance per node over the cluster links (constant
   // over the node); out_bins, in_bins: each cluster's six bins, leaving and
   // arriving (cluster_tree.h).
+  const auto wp = static_cast<Eigen::Index>(ws);
   const bool clustered = !clusters_.tree.empty();
   const size_t bin_rows = kClusterBins * clusters_.tree.clusters.size();
   std::vector<double> ge(clustered ? n * ws : 0, 0.0);
@@ -220,29 +224,39 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
     }
     std::fill(in_bins.begin(), in_bins.end(), 0.0);
     std::fill(ge.begin(), ge.end(), 0.0);
-    Eigen::ArrayXd light(w);
     // Light from element `from` towards direction `dir` (unit, leaving it),
     // times `scale` (ClusterLink), onto element `to`, arriving from -dir.
     const auto carry = [&](uint32_t from, uint32_t to, const Vec3& dir, double scale) {
       if (scale == 0) return;
+      const double* from_rows[3];
+      double* to_rows[3];
+      double from_weight[3], to_weight[3];
+      int n_from = 0, n_to = 0;
       if (IsCluster(from)) {
         const size_t c = ClusterIndex(from);
-        light.setZero();
-        for (int i = 0; i < 3; ++i)
-          if (dir[i] != 0)
-            light += (scale * std::abs(dir[i])) * bin(out_bins, c, ClusterBin(i, dir[i]));
+        for (int i = 0; i < 3; ++i) {
+          if (dir[i] == 0) continue;
+          from_rows[n_from] = bin(out_bins, c, ClusterBin(i, dir[i])).data();
+          from_weight[n_from++] = scale * std::abs(dir[i]);
+        }
       } else {
-        light = scale * crow(b, from);
+        from_rows[n_from] = crow(b, from).data();
+        from_weight[n_from++] = scale;
       }
       if (IsCluster(to)) {
         const size_t c = ClusterIndex(to);
-        for (int i = 0; i < 3; ++i)
-          if (dir[i] != 0) bin(in_bins, c, ClusterBin(i, -dir[i])) += std::abs(dir[i]) * light;
+        for (int i = 0; i < 3; ++i) {
+          if (dir[i] == 0) continue;
+          to_rows[n_to] = bin(in_bins, c, ClusterBin(i, -dir[i])).data();
+          to_weight[n_to++] = std::abs(dir[i]);
+        }
       } else {
-        const HierarchyNode& node = nodes[to];
-        const double cosine = -Dot(node.normal, dir);
-        if (cosine > 0) row(ge, to) += cosine * light;
+        const double cosine = -Dot(nodes[to].normal, dir);
+        if (!(cosine > 0)) return;
+        to_rows[n_to] = row(ge, to).data();
+        to_weight[n_to++] = cosine;
       }
+      CarryLight(from_rows, from_weight, n_from, to_rows, to_weight, n_to, ws);
     };
     for (const ClusterLink& l : clusters_.links) {
       const Vec3 back{-l.direction[0], -l.direction[1], -l.direction[2]};
@@ -268,28 +282,16 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
   // Every node of surface sf gathers from the current exitance of the others
   // (a planar surface never sees itself), and the light is pushed down: a
   // leaf's row of g0 is then its mean irradiance.
+  const GatherSources sources{b.data(), mu.data(), mv.data(), ws};
   const auto gather = [&](size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
       Row a = row(g0, k);
-      a.setZero();
       const uint32_t e0 = gather_offsets_[k], e1 = gather_offsets_[k + 1];
       const bool inner = !nodes[k].leaf();
       Row du = row(gu, k), dv = row(gv, k);
-      if (inner) {
-        du.setZero();
-        dv.setZero();
-      }
-      for (uint32_t e = e0; e < e1; ++e) {
-        const uint32_t q = gather_source_[e];
-        const double* c = &gather_factor_[kGatherCoefficients * e];
-        const ConstRow src = crow(b, q);
-        a += c[0] * src;
-        if (c[3] != 0 || c[4] != 0) a += c[3] * crow(mu, q) + c[4] * crow(mv, q);
-        if (inner) {
-          du += c[1] * src;
-          dv += c[2] * src;
-        }
-      }
+      GatherNode(sources, gather_source_.data() + e0,
+                 gather_factor_.data() + kGatherCoefficients * e0, e1 - e0, inner, a.data(),
+                 du.data(), dv.data());
       // About the surface's origin rather than the node's centre, so
       // that a child can add its parent's coefficients as they are.
       if (inner) a -= centre_uv_[k][0] * du + centre_uv_[k][1] * dv;
@@ -322,7 +324,7 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
   // leaves, relative to each column's peak exitance (one extra gather).
   const auto residual = [&]() {
     if (clustered) cluster_pass();
-    Eigen::ArrayXd r = Eigen::ArrayXd::Zero(w), peak = Eigen::ArrayXd::Zero(w);
+    Eigen::ArrayXd r = Eigen::ArrayXd::Zero(wp), peak = Eigen::ArrayXd::Zero(wp);
     for (size_t sf = 0; sf < surfaces; ++sf) {
       const size_t begin = hierarchy_.surface_begin[sf], end = hierarchy_.surface_begin[sf + 1];
       gather(begin, end);
@@ -341,7 +343,7 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
   // |r| <= tolerance (1 - rho_max) peak bounds the error by tolerance x peak.
   const double rho_max = std::min(rho.size() > 0 ? rho.maxCoeff() : 0.0, 0.999);
   const double residual_bar = options_.tolerance * (1 - rho_max);
-  Eigen::ArrayXd change(w), peak(w);
+  Eigen::ArrayXd change(wp), peak(wp), updated(wp);
   double previous = 0, stopped_at = 0;
   int sweep = 0;
   while (sweep < options_.max_sweeps) {
@@ -356,7 +358,7 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
       for (size_t k = begin; k < end; ++k) {
         if (!nodes[k].leaf()) continue;
         const double r = rho(static_cast<Eigen::Index>(nodes[k].patch));
-        const Eigen::ArrayXd updated = crow(s, k) + r * crow(g0, k);
+        updated = crow(s, k) + r * crow(g0, k);
         Row bk = row(b, k);
         change = change.max((updated - bk).abs());
         peak = peak.max(updated.abs());
