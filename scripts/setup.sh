@@ -8,7 +8,7 @@ PACKAGES=(cmake g++ make pkg-config libembree-dev libzstd-dev zlib1g-dev libosme
           libpng-dev libtomlplusplus-dev libcli11-dev libeigen3-dev libgtest-dev
           libbenchmark-dev libmodbus-dev libgpiod-dev mbpoll socat
           qlcplus-data libpugixml-dev ola libola-dev python3 libsystemd-dev
-          libopenmpi-dev openmpi-bin)
+          libopenmpi-dev openmpi-bin libopenblas-dev)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

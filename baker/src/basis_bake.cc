@@ -187,8 +187,10 @@ relight::Bake Baker::BakePart(const std::function<bool(size_t)>& mine, bool whol
       }
       if (s == 0) sets[s].rho = &core.mesh.vertex_reflectance;
     }
+    const Stopwatch compress_time;
     CompressLuminaireBases(scene.luminaires[l], l, basis.degree, sets, core.options,
                            &bake.luminaires.back(), &impl_->report);
+    impl_->report.compress_seconds += compress_time.seconds();
     terms += static_cast<size_t>(ShTermCount(basis.degree));
     impl_->progress.Advance(static_cast<size_t>(ShTermCount(basis.degree)));
   }

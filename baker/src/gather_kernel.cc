@@ -5,8 +5,7 @@
 // compiled with -O3 -ffp-contract=off (CMakeLists.txt): vectorised loops, and
 // no multiply-add contraction that would change results between copies.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define RELIGHT_GATHER_CLONES                                                  \
-  __attribute__((target_clones("avx512f", "avx2", "default")))
+#define RELIGHT_GATHER_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define RELIGHT_GATHER_CLONES
 #endif
@@ -16,15 +15,13 @@ namespace {
 
 // One loop body per case so the compiler sees no branch inside it.
 template <bool kInner, bool kMoment>
-inline void
-Accumulate(const double *__restrict bq, const double *__restrict muq,
-           const double *__restrict mvq, const double *f, size_t width,
-           double *__restrict a, double *__restrict du, double *__restrict dv) {
+inline void Accumulate(const double* __restrict bq, const double* __restrict muq,
+                       const double* __restrict mvq, const double* f, size_t width,
+                       double* __restrict a, double* __restrict du, double* __restrict dv) {
   const double f0 = f[0], f1 = f[1], f2 = f[2], f3 = f[3], f4 = f[4];
   for (size_t j = 0; j < width; ++j) {
     double t = a[j] + f0 * bq[j];
-    if constexpr (kMoment)
-      t = t + (f3 * muq[j] + f4 * mvq[j]);
+    if constexpr (kMoment) t = t + (f3 * muq[j] + f4 * mvq[j]);
     a[j] = t;
     if constexpr (kInner) {
       du[j] = du[j] + f1 * bq[j];
@@ -33,26 +30,23 @@ Accumulate(const double *__restrict bq, const double *__restrict muq,
   }
 }
 
-} // namespace
+}  // namespace
 
 RELIGHT_GATHER_CLONES
-void GatherNode(const GatherSources &src, const uint32_t *source,
-                const double *factor, uint32_t count, bool inner, double *a,
-                double *du, double *dv) {
+void GatherNode(const GatherSources& src, const uint32_t* source, const double* factor,
+                uint32_t count, bool inner, double* a, double* du, double* dv) {
   const size_t width = src.width;
-  for (size_t j = 0; j < width; ++j)
-    a[j] = 0;
+  for (size_t j = 0; j < width; ++j) a[j] = 0;
   if (inner) {
-    for (size_t j = 0; j < width; ++j)
-      du[j] = dv[j] = 0;
+    for (size_t j = 0; j < width; ++j) du[j] = dv[j] = 0;
   }
   for (uint32_t e = 0; e < count; ++e) {
     const size_t row = static_cast<size_t>(source[e]) * width;
-    const double *f = factor + 5 * static_cast<size_t>(e);
-    const double *bq = src.b + row;
+    const double* f = factor + 5 * static_cast<size_t>(e);
+    const double* bq = src.b + row;
     const bool moment = f[3] != 0 || f[4] != 0;
-    const double *muq = src.mu + row;
-    const double *mvq = src.mv + row;
+    const double* muq = src.mu + row;
+    const double* mvq = src.mv + row;
     if (inner) {
       if (moment)
         Accumulate<true, true>(bq, muq, mvq, f, width, a, du, dv);
@@ -68,30 +62,26 @@ void GatherNode(const GatherSources &src, const uint32_t *source,
 }
 
 RELIGHT_GATHER_CLONES
-void CarryLight(const double *const *from, const double *from_weight,
-                int n_from, double *const *to, const double *to_weight,
-                int n_to, size_t width) {
+void CarryLight(const double* const* from, const double* from_weight, int n_from, double* const* to,
+                const double* to_weight, int n_to, size_t width) {
   // Rows outermost, columns innermost (vectorised), a chunk of columns at a
   // time.
   constexpr size_t kChunk = 32;
   double light[kChunk];
   for (size_t j0 = 0; j0 < width; j0 += kChunk) {
     const size_t n = width - j0 < kChunk ? width - j0 : kChunk;
-    for (size_t j = 0; j < n; ++j)
-      light[j] = 0;
+    for (size_t j = 0; j < n; ++j) light[j] = 0;
     for (int i = 0; i < n_from; ++i) {
       const double w = from_weight[i];
-      const double *__restrict row = from[i] + j0;
-      for (size_t j = 0; j < n; ++j)
-        light[j] = light[j] + w * row[j];
+      const double* __restrict row = from[i] + j0;
+      for (size_t j = 0; j < n; ++j) light[j] = light[j] + w * row[j];
     }
     for (int k = 0; k < n_to; ++k) {
       const double w = to_weight[k];
-      double *__restrict row = to[k] + j0;
-      for (size_t j = 0; j < n; ++j)
-        row[j] = row[j] + w * light[j];
+      double* __restrict row = to[k] + j0;
+      for (size_t j = 0; j < n; ++j) row[j] = row[j] + w * light[j];
     }
   }
 }
 
-} // namespace relight::baker
+}  // namespace relight::baker

@@ -18,9 +18,9 @@ constexpr size_t kGatherLanes = 4;
 // Node-major blocks of `width` columns a row (width a multiple of
 // kGatherLanes): b exitance, mu and mv its first moment.
 struct GatherSources {
-  const double *b;
-  const double *mu;
-  const double *mv;
+  const double* b;
+  const double* mu;
+  const double* mv;
   size_t width;
 };
 
@@ -30,16 +30,14 @@ struct GatherSources {
 //   a += f0 b_q, then a += f3 mu_q + f4 mv_q when f3 or f4 is not zero,
 //   and with `inner`: du += f1 b_q, dv += f2 b_q.
 // a (and du, dv with `inner`) are set to zero first.
-void GatherNode(const GatherSources &src, const uint32_t *source,
-                const double *factor, uint32_t count, bool inner, double *a,
-                double *du, double *dv);
+void GatherNode(const GatherSources& src, const uint32_t* source, const double* factor,
+                uint32_t count, bool inner, double* a, double* du, double* dv);
 
 // Light carried over one cluster link, per column j < width:
 //   light = sum over i < n_from of from_weight[i] from[i][j] (in that order),
 //   then to[k][j] += to_weight[k] light for every k < n_to.
 // At most 3 rows each side (a cluster's direction bins, or one node's row).
-void CarryLight(const double *const *from, const double *from_weight,
-                int n_from, double *const *to, const double *to_weight,
-                int n_to, size_t width);
+void CarryLight(const double* const* from, const double* from_weight, int n_from, double* const* to,
+                const double* to_weight, int n_to, size_t width);
 
-} // namespace relight::baker
+}  // namespace relight::baker

@@ -95,6 +95,7 @@ struct BakeReport {
   size_t patches = 0, vertices = 0, triangles = 0, grid_points = 0;
   size_t luminaires = 0, sh_terms = 0;  // terms summed over luminaires
   double form_factor_seconds = 0, solve_seconds = 0, total_seconds = 0;
+  double compress_seconds = 0;  // the part of solve_seconds spent compressing bases
   SolverKind solver = SolverKind::kDense;  // the one used (never kAuto)
   size_t nodes = 0, links = 0;             // hierarchical: quadtree nodes and links
   size_t clusters = 0, cluster_links = 0;  // hierarchical, clustered: volume clusters, their links
