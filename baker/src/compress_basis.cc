@@ -1,11 +1,10 @@
 // Clustered PCA of a basis (see compress_basis.h). Sloan et al. 2003.
 #include "compress_basis.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <vector>
 
+#include "dense_blas.h"
 #include "parallel_for.h"
 #include "quantise.h"
 
@@ -23,56 +22,6 @@ constexpr double kQuantisationHeadroom = 0.8;
 using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
-
-// LAPACK's symmetric eigensolver (MRRR, dsyevr): the PCA needs the largest
-// 32 eigenpairs of up to 243; with Debian's OpenBLAS it finds all of them
-// about 3x faster than Eigen's QR. (Asking dsyevr for a range instead
-// switches it to bisection, which was slower on these matrices.)
-extern "C" void dsyevr_(const char* jobz, const char* range, const char* uplo, const int* n,
-                        double* a, const int* lda, const double* vl, const double* vu,
-                        const int* il, const int* iu, const double* abstol, int* m, double* w,
-                        double* z, const int* ldz, int* isuppz, double* work, const int* lwork,
-                        int* iwork, const int* liwork, int* info);
-
-// OpenBLAS, when it is the LAPACK found at run time, would start threads of
-// its own inside the PCA's; the bases' clusters already keep every core busy.
-extern "C" void openblas_set_num_threads(int) __attribute__((weak));
-[[maybe_unused]] const bool kOneBlasThread = [] {
-  if (openblas_set_num_threads) openblas_set_num_threads(1);
-  return true;
-}();
-
-// The `count` unit eigenvectors of the largest eigenvalues of symmetric g
-// (its lower triangle is read), largest first; g is overwritten.
-MatrixXd TopEigenvectors(MatrixXd& g, Index count) {
-  const int n = static_cast<int>(g.rows());
-  if (count == 0 || n == 0) return MatrixXd(n, 0);
-  const MatrixXd original = g;  // dsyevr overwrites g
-  MatrixXd z(n, n);
-  const int unused_index = 0;
-  const double unused_bound = 0, abstol = 0;  // 0: LAPACK's own safe tolerance
-  int m = 0, info = 0;
-  std::vector<double> w(static_cast<size_t>(n));
-  std::vector<int> isuppz(2 * static_cast<size_t>(n));
-  double work_size = 0;
-  int iwork_size = 0, query = -1;
-  dsyevr_("V", "A", "L", &n, g.data(), &n, &unused_bound, &unused_bound, &unused_index,
-          &unused_index, &abstol, &m, w.data(), z.data(), &n, isuppz.data(), &work_size, &query,
-          &iwork_size, &query, &info);
-  int lwork = static_cast<int>(work_size), liwork = iwork_size;
-  std::vector<double> work(static_cast<size_t>(std::max(lwork, 1)));
-  std::vector<int> iwork(static_cast<size_t>(std::max(liwork, 1)));
-  if (info == 0) {
-    dsyevr_("V", "A", "L", &n, g.data(), &n, &unused_bound, &unused_bound, &unused_index,
-            &unused_index, &abstol, &m, w.data(), z.data(), &n, isuppz.data(), work.data(), &lwork,
-            iwork.data(), &liwork, &info);
-  }
-  if (info != 0 || m != n) {  // not expected for a symmetric matrix: Eigen's then
-    Eigen::SelfAdjointEigenSolver<MatrixXd> es(original.selfadjointView<Eigen::Lower>());
-    return es.eigenvectors().rightCols(count).rowwise().reverse();
-  }
-  return z.rightCols(count).rowwise().reverse();  // LAPACK's come in ascending order
-}
 
 // Receivers x (3 terms): channel c in columns [c T, (c + 1) T).
 MatrixXd StackChannels(const std::array<MatrixXd, 3>& basis) {
@@ -94,7 +43,7 @@ VectorXd LookPeaks(const MatrixXd& x, const MatrixXd& k, const std::vector<Matri
   const Index t = k.rows();
   VectorXd peak = VectorXd::Zero(k.cols());
   for (int c = 0; c < 3; ++c) {
-    MatrixXd v = x.middleCols(c * t, t) * k;
+    MatrixXd v = Multiply(x.middleCols(c * t, t), k);
     for (size_t l = 0; l < direct.size(); ++l) v.col(static_cast<Index>(l)) += direct[l].col(c);
     peak = peak.cwiseMax(v.cwiseAbs().colwise().maxCoeff().transpose());
   }
@@ -120,30 +69,27 @@ ClusterPca Pca(const MatrixXd& x, Index start, Index size, Index rmax, const Mat
   const Index d = y.cols();
   const Index rc = std::min({rmax, size, d});
   if (size >= d) {
-    MatrixXd gram = MatrixXd::Zero(d, d);
-    gram.selfadjointView<Eigen::Lower>().rankUpdate(y.transpose());
+    MatrixXd gram = LowerGram(y, false);
     p.vectors = TopEigenvectors(gram, rc);
   } else {  // fewer receivers than dimensions: the Gram matrix is smaller
-    MatrixXd gram = MatrixXd::Zero(size, size);
-    gram.selfadjointView<Eigen::Lower>().rankUpdate(y);
-    p.vectors = y.transpose() * TopEigenvectors(gram, rc);
+    MatrixXd gram = LowerGram(y, true);
+    p.vectors = Multiply(y, TopEigenvectors(gram, rc), true);
     for (Index j = 0; j < rc; ++j) {
       const double norm = p.vectors.col(j).norm();
       p.vectors.col(j) = norm > 0 ? VectorXd(p.vectors.col(j) / norm) : VectorXd::Zero(d);
     }
   }
-  p.weights = y * p.vectors;
+  p.weights = Multiply(y, p.vectors);
   // Errors at the looks for r = 0 .. rc, channel by channel.
   const Index t = k.rows(), looks = k.cols();
   p.max_err = MatrixXd::Zero(rc + 1, looks);
   p.sum_err = MatrixXd::Zero(rc + 1, looks);
   for (int c = 0; c < 3; ++c) {
-    MatrixXd residual = y.middleCols(c * t, t) * k;                 // size x looks
+    MatrixXd residual = Multiply(y.middleCols(c * t, t), k);  // size x looks
     const MatrixXd f = p.vectors.middleRows(c * t, t).transpose() * k;  // rc x looks
     for (Index r = 0; r <= rc; ++r) {
-      const MatrixXd a = residual.cwiseAbs();
-      p.max_err.row(r) = p.max_err.row(r).cwiseMax(a.colwise().maxCoeff());
-      p.sum_err.row(r) += a.colwise().sum();
+      p.max_err.row(r) = p.max_err.row(r).cwiseMax(residual.cwiseAbs().colwise().maxCoeff());
+      p.sum_err.row(r) += residual.cwiseAbs().colwise().sum();
       if (r < rc) residual -= p.weights.col(r) * f.row(r);
     }
   }
@@ -228,15 +174,16 @@ void MeasureCompressedError(const std::array<MatrixXd, 3>& basis, const BakeComp
     recon.middleRows(s, n).rowwise() += vecs.row(row);
   }
   const MatrixXd diff = x - recon;
+  std::array<MatrixXd, 3> error;  // per channel: receivers x looks
+  for (int c = 0; c < 3; ++c) error[c] = Multiply(diff.middleCols(c * terms, terms), k);
   double worst = 0, mean = 0;
   int counted = 0;
   for (Index l = 0; l < k.cols(); ++l) {
     if (!(peak(l) > 0)) continue;
     double m = 0, sum = 0;
     for (int c = 0; c < 3; ++c) {
-      const VectorXd e = (diff.middleCols(c * terms, terms) * k.col(l)).cwiseAbs();
-      m = std::max(m, e.maxCoeff());
-      sum += e.sum();
+      m = std::max(m, error[c].col(l).cwiseAbs().maxCoeff());
+      sum += error[c].col(l).cwiseAbs().sum();
     }
     worst = std::max(worst, m / peak(l));
     mean += sum / (3.0 * static_cast<double>(receivers)) / peak(l);
