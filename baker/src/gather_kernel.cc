@@ -42,7 +42,7 @@ void GatherNode(const GatherSources& src, const uint32_t* source, const double* 
   }
   for (uint32_t e = 0; e < count; ++e) {
     const size_t row = static_cast<size_t>(source[e]) * width;
-    const double* f = factor + 5 * static_cast<size_t>(e);
+    const double* f = factor + kGatherCoefficients * static_cast<size_t>(e);
     const double* bq = src.b + row;
     const bool moment = f[3] != 0 || f[4] != 0;
     const double* muq = src.mu + row;

@@ -12,6 +12,10 @@
 
 namespace relight::baker {
 
+// Per gather entry: the mean factor, its gradient over the receiver (u, v)
+// and the weights of the source's exitance moment (u, v).
+constexpr size_t kGatherCoefficients = 5;
+
 // Columns per row are padded to a multiple of this (zeros in the padding).
 constexpr size_t kGatherLanes = 4;
 

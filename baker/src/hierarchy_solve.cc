@@ -16,9 +16,6 @@ using radiosity_vec::Dot;
 // cache for tens of thousands of nodes, and a luminaire's terms split into
 // several blocks so both cores get work.
 constexpr Eigen::Index kMaxBlockColumns = 32;
-// Per gather entry: the mean factor, its gradient over the receiver (u, v)
-// and the weights of the source's exitance moment (u, v).
-constexpr size_t kGatherCoefficients = 5;
 
 using Row = Eigen::Map<Eigen::ArrayXd>;
 using ConstRow = Eigen::Map<const Eigen::ArrayXd>;
