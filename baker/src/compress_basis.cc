@@ -13,6 +13,8 @@ namespace {
 
 // Cluster lengths tried (multiples of 16: the kernel's vector width) and the
 // most components searched; the format allows more (kMaxCompressedComponents).
+// Every length wins for some luminaire (the bytes against the length are not
+// monotonic), so all are searched.
 constexpr uint32_t kClusterSizes[] = {2048, 1024, 512, 256, 128};
 constexpr uint32_t kMaxSearchedComponents = 32;
 // Unquantised candidates must meet this share of the target: quantising the
@@ -37,16 +39,27 @@ MatrixXd LookMatrix(const std::vector<VectorXd>& looks, Index terms) {
   return k;
 }
 
+// Receivers a task takes in the passes over all receivers.
+constexpr Index kRowChunk = 4096;
+
 // Per look, the largest |value| of the uncompressed basis plus the direct
 // light (if given) over receivers and channels.
-VectorXd LookPeaks(const MatrixXd& x, const MatrixXd& k, const std::vector<MatrixXd>& direct) {
-  const Index t = k.rows();
+VectorXd LookPeaks(const MatrixXd& x, const MatrixXd& k, const std::vector<MatrixXd>& direct,
+                   int threads) {
+  const Index t = k.rows(), rows = x.rows();
+  const size_t chunks = static_cast<size_t>((rows + kRowChunk - 1) / kRowChunk);
+  std::vector<VectorXd> chunk_peak(chunks, VectorXd::Zero(k.cols()));
+  ParallelFor(chunks, threads, [&](size_t ch, int) {
+    const Index from = static_cast<Index>(ch) * kRowChunk, n = std::min(kRowChunk, rows - from);
+    for (int c = 0; c < 3; ++c) {
+      MatrixXd v = Multiply(x.block(from, c * t, n, t), k);
+      for (size_t l = 0; l < direct.size(); ++l)
+        v.col(static_cast<Index>(l)) += direct[l].block(from, c, n, 1);
+      chunk_peak[ch] = chunk_peak[ch].cwiseMax(v.cwiseAbs().colwise().maxCoeff().transpose());
+    }
+  });
   VectorXd peak = VectorXd::Zero(k.cols());
-  for (int c = 0; c < 3; ++c) {
-    MatrixXd v = Multiply(x.middleCols(c * t, t), k);
-    for (size_t l = 0; l < direct.size(); ++l) v.col(static_cast<Index>(l)) += direct[l].col(c);
-    peak = peak.cwiseMax(v.cwiseAbs().colwise().maxCoeff().transpose());
-  }
+  for (const VectorXd& p : chunk_peak) peak = peak.cwiseMax(p);
   return peak;
 }
 
@@ -144,13 +157,13 @@ void Quantise(const std::vector<ClusterPca>& pcas, uint32_t r, Index terms, Inde
 
 }  // namespace
 
-void MeasureCompressedError(const std::array<MatrixXd, 3>& basis, const BakeCompressedBasis& cpca,
-                            const std::vector<VectorXd>& looks, const std::vector<MatrixXd>& direct,
-                            double* max_error, double* mean_error) {
-  const MatrixXd x = StackChannels(basis);
-  const Index terms = basis[0].cols(), receivers = x.rows();
-  const MatrixXd k = LookMatrix(looks, terms);
-  const VectorXd peak = LookPeaks(x, k, direct);
+namespace {
+
+// MeasureCompressedError on the stacked basis x, the looks k and their peaks.
+void MeasureStacked(const MatrixXd& x, const MatrixXd& k, const VectorXd& peak,
+                    const BakeCompressedBasis& cpca, int threads, double* max_error,
+                    double* mean_error) {
+  const Index terms = k.rows(), receivers = x.rows(), looks = k.cols();
   const uint32_t r = cpca.components;
   const Index nv = static_cast<Index>(cpca.cluster_count()) * (r + 1);
   MatrixXd vecs(nv, 3 * terms);  // dequantised
@@ -160,8 +173,11 @@ void MeasureCompressedError(const std::array<MatrixXd, 3>& basis, const BakeComp
       for (Index v = 0; v < nv; ++v) vecs(v, c * terms + t) = s * cpca.vectors[static_cast<size_t>((t * nv + v) * 3 + c)];
     }
   }
-  MatrixXd recon(receivers, 3 * terms);
-  for (uint32_t cl = 0; cl < cpca.cluster_count(); ++cl) {
+  // Per cluster and look: the largest and the summed |error| over its
+  // receivers and the channels; clusters run in parallel, summed in order.
+  const size_t clusters = cpca.cluster_count();
+  std::vector<VectorXd> cluster_max(clusters), cluster_sum(clusters);
+  ParallelFor(clusters, threads, [&](size_t cl, int) {
     const Index s = cpca.cluster_start[cl], n = cpca.cluster_start[cl + 1] - s;
     MatrixXd w(n, r);
     for (uint32_t j = 0; j < r; ++j) {
@@ -170,20 +186,25 @@ void MeasureCompressedError(const std::array<MatrixXd, 3>& basis, const BakeComp
       }
     }
     const Index row = static_cast<Index>(cl) * (r + 1);
-    recon.middleRows(s, n) = w * vecs.middleRows(row + 1, r);
-    recon.middleRows(s, n).rowwise() += vecs.row(row);
-  }
-  const MatrixXd diff = x - recon;
-  std::array<MatrixXd, 3> error;  // per channel: receivers x looks
-  for (int c = 0; c < 3; ++c) error[c] = Multiply(diff.middleCols(c * terms, terms), k);
+    MatrixXd diff = x.middleRows(s, n);
+    if (r > 0) diff -= Multiply(w, vecs.middleRows(row + 1, r));
+    diff.rowwise() -= vecs.row(row);
+    cluster_max[cl] = VectorXd::Zero(looks);
+    cluster_sum[cl] = VectorXd::Zero(looks);
+    for (int c = 0; c < 3; ++c) {
+      const MatrixXd error = Multiply(diff.middleCols(c * terms, terms), k).cwiseAbs();
+      cluster_max[cl] = cluster_max[cl].cwiseMax(error.colwise().maxCoeff().transpose());
+      cluster_sum[cl] += error.colwise().sum().transpose();
+    }
+  });
   double worst = 0, mean = 0;
   int counted = 0;
-  for (Index l = 0; l < k.cols(); ++l) {
+  for (Index l = 0; l < looks; ++l) {
     if (!(peak(l) > 0)) continue;
     double m = 0, sum = 0;
-    for (int c = 0; c < 3; ++c) {
-      m = std::max(m, error[c].col(l).cwiseAbs().maxCoeff());
-      sum += error[c].col(l).cwiseAbs().sum();
+    for (size_t cl = 0; cl < clusters; ++cl) {
+      m = std::max(m, cluster_max[cl](l));
+      sum += cluster_sum[cl](l);
     }
     worst = std::max(worst, m / peak(l));
     mean += sum / (3.0 * static_cast<double>(receivers)) / peak(l);
@@ -191,6 +212,16 @@ void MeasureCompressedError(const std::array<MatrixXd, 3>& basis, const BakeComp
   }
   *max_error = worst;
   *mean_error = counted > 0 ? mean / counted : 0;
+}
+
+}  // namespace
+
+void MeasureCompressedError(const std::array<MatrixXd, 3>& basis, const BakeCompressedBasis& cpca,
+                            const std::vector<VectorXd>& looks, const std::vector<MatrixXd>& direct,
+                            double* max_error, double* mean_error, int threads) {
+  const MatrixXd x = StackChannels(basis);
+  const MatrixXd k = LookMatrix(looks, basis[0].cols());
+  MeasureStacked(x, k, LookPeaks(x, k, direct, threads), cpca, threads, max_error, mean_error);
 }
 
 CompressionStats CompressBasis(const std::array<MatrixXd, 3>& basis, const std::vector<VectorXd>& looks,
@@ -202,13 +233,15 @@ CompressionStats CompressBasis(const std::array<MatrixXd, 3>& basis, const std::
   stats.bytes = 2 * 3 * static_cast<uint64_t>(terms * receivers) + 8 * 3 * static_cast<uint64_t>(terms);
   if (receivers == 0 || terms == 0 || looks.empty()) return stats;
   const MatrixXd k = LookMatrix(looks, terms);
-  const VectorXd peak = LookPeaks(x, k, direct);
+  const VectorXd peak = LookPeaks(x, k, direct, threads);
   std::vector<Candidate> passing;
   std::vector<std::vector<ClusterPca>> by_size;
   std::vector<uint32_t> sizes;
-  for (uint32_t n : kClusterSizes) {
-    const Index clusters = (receivers + n - 1) / n;
-    if (!sizes.empty() && (receivers + sizes.back() - 1) / sizes.back() == clusters) continue;
+  const auto cluster_count = [&](uint32_t n) { return (receivers + n - 1) / n; };
+  const auto evaluate = [&](uint32_t n) {
+    const Index clusters = cluster_count(n);
+    for (uint32_t tried : sizes)
+      if (cluster_count(tried) == clusters) return;
     std::vector<ClusterPca> pcas(static_cast<size_t>(clusters));
     ParallelFor(static_cast<size_t>(clusters), threads, [&](size_t c, int) {
       const Index start = static_cast<Index>(c) * n;
@@ -247,7 +280,8 @@ CompressionStats CompressBasis(const std::array<MatrixXd, 3>& basis, const std::
     }
     sizes.push_back(n);
     by_size.push_back(std::move(pcas));
-  }
+  };
+  for (uint32_t n : kClusterSizes) evaluate(n);
   std::sort(passing.begin(), passing.end(),
             [](const Candidate& a, const Candidate& b) { return a.bytes < b.bytes; });
   constexpr size_t kTries = 4;
@@ -257,7 +291,7 @@ CompressionStats CompressBasis(const std::array<MatrixXd, 3>& basis, const std::
     BakeCompressedBasis cpca;
     Quantise(by_size[s], cand.components, terms, receivers, &cpca);
     double worst = 0, mean = 0;
-    MeasureCompressedError(basis, cpca, looks, direct, &worst, &mean);
+    MeasureStacked(x, k, peak, cpca, threads, &worst, &mean);
     if (worst > max_error) continue;
     stats.compressed = true;
     stats.clusters = cpca.cluster_count();

@@ -46,10 +46,11 @@ CompressionStats CompressBasis(const std::array<Eigen::MatrixXd, 3>& basis,
                                int threads, BakeCompressedBasis* out,
                                std::vector<CompressionPoint>* curve = nullptr);
 
-// The error of `cpca` as stored (quantised), at the looks, as in CompressionStats.
+// The error of `cpca` as stored (quantised), at the looks, as in
+// CompressionStats; threads as ParallelFor takes them (0: every core).
 void MeasureCompressedError(const std::array<Eigen::MatrixXd, 3>& basis,
                             const BakeCompressedBasis& cpca, const std::vector<Eigen::VectorXd>& looks,
                             const std::vector<Eigen::MatrixXd>& direct, double* max_error,
-                            double* mean_error);
+                            double* mean_error, int threads = 1);
 
 }  // namespace relight::baker

@@ -12,12 +12,19 @@ void dgemm_(const char* transa, const char* transb, const int* m, const int* n, 
             const double* beta, double* c, const int* ldc);
 void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha,
             const double* a, const int* lda, const double* beta, double* c, const int* ldc);
-// The symmetric eigensolver (MRRR). Asked for all pairs: asking for a range
-// switches it to bisection, which was slower on the PCA's matrices.
-void dsyevr_(const char* jobz, const char* range, const char* uplo, const int* n, double* a,
-             const int* lda, const double* vl, const double* vu, const int* il, const int* iu,
-             const double* abstol, int* m, double* w, double* z, const int* ldz, int* isuppz,
-             double* work, const int* lwork, int* iwork, const int* liwork, int* info);
+// The symmetric eigenproblem in its three steps, so that only the few
+// eigenvectors the PCA keeps are computed and transformed back: reduction
+// to tridiagonal form, MRRR on a range of indices (dstemr; dsyevr would
+// switch to bisection for a range), and the back-transformation of those.
+void dsytrd_(const char* uplo, const int* n, double* a, const int* lda, double* d, double* e,
+             double* tau, double* work, const int* lwork, int* info);
+void dstemr_(const char* jobz, const char* range, const int* n, double* d, double* e,
+             const double* vl, const double* vu, const int* il, const int* iu, int* m, double* w,
+             double* z, const int* ldz, const int* nzc, int* isuppz, int* tryrac, double* work,
+             const int* lwork, int* iwork, const int* liwork, int* info);
+void dormtr_(const char* side, const char* uplo, const char* trans, const int* m, const int* n,
+             const double* a, const int* lda, const double* tau, double* c, const int* ldc,
+             double* work, const int* lwork, int* info);
 // OpenBLAS only: weak, so any other BLAS links as well.
 void openblas_set_num_threads(int) __attribute__((weak));
 }
@@ -65,32 +72,54 @@ MatrixXd LowerGram(const ConstMatrixRef& y, bool of_rows) {
 
 MatrixXd TopEigenvectors(MatrixXd& g, Index count) {
   const int n = static_cast<int>(g.rows());
+  count = std::min<Index>(count, n);
   if (count == 0 || n == 0) return MatrixXd(n, 0);
-  const MatrixXd original = g;  // dsyevr overwrites g
-  MatrixXd z(n, n);
+  const MatrixXd original = g;  // dsytrd overwrites g
+  const auto fallback = [&] {  // not expected for a symmetric matrix: Eigen's then
+    Eigen::SelfAdjointEigenSolver<MatrixXd> es(original.selfadjointView<Eigen::Lower>());
+    return MatrixXd(es.eigenvectors().rightCols(count).rowwise().reverse());
+  };
+  const int wanted = static_cast<int>(count), query = -1;
+  std::vector<double> d(static_cast<size_t>(n)), e(static_cast<size_t>(n)),
+      tau(static_cast<size_t>(n));
+  int info = 0;
+  double size = 0;
+  dsytrd_("L", &n, g.data(), &n, d.data(), e.data(), tau.data(), &size, &query, &info);
+  if (info != 0) return fallback();
+  std::vector<double> work(static_cast<size_t>(std::max(1.0, size)));
+  int lwork = static_cast<int>(work.size());
+  dsytrd_("L", &n, g.data(), &n, d.data(), e.data(), tau.data(), work.data(), &lwork, &info);
+  if (info != 0) return fallback();
+  // Every eigenpair of the tridiagonal matrix (O(n^2) by MRRR; a range of
+  // indices would make dstemr find the eigenvalues by bisection, slower
+  // here), then the `count` largest (the last columns) transformed back.
+  const double unused_bound = 0;
   const int unused_index = 0;
-  const double unused_bound = 0, abstol = 0;  // 0: LAPACK's own safe tolerance
-  int m = 0, info = 0;
+  int m = 0, tryrac = 1, iwork_size = 0;
+  MatrixXd all(n, n);
   std::vector<double> w(static_cast<size_t>(n));
   std::vector<int> isuppz(2 * static_cast<size_t>(n));
-  double work_size = 0;
-  int iwork_size = 0, query = -1;
-  dsyevr_("V", "A", "L", &n, g.data(), &n, &unused_bound, &unused_bound, &unused_index,
-          &unused_index, &abstol, &m, w.data(), z.data(), &n, isuppz.data(), &work_size, &query,
+  dstemr_("V", "A", &n, d.data(), e.data(), &unused_bound, &unused_bound, &unused_index,
+          &unused_index, &m, w.data(), all.data(), &n, &n, isuppz.data(), &tryrac, &size, &query,
           &iwork_size, &query, &info);
-  int lwork = static_cast<int>(work_size), liwork = iwork_size;
-  std::vector<double> work(static_cast<size_t>(std::max(lwork, 1)));
-  std::vector<int> iwork(static_cast<size_t>(std::max(liwork, 1)));
-  if (info == 0) {
-    dsyevr_("V", "A", "L", &n, g.data(), &n, &unused_bound, &unused_bound, &unused_index,
-            &unused_index, &abstol, &m, w.data(), z.data(), &n, isuppz.data(), work.data(), &lwork,
-            iwork.data(), &liwork, &info);
-  }
-  if (info != 0 || m != n) {  // not expected for a symmetric matrix: Eigen's then
-    Eigen::SelfAdjointEigenSolver<MatrixXd> es(original.selfadjointView<Eigen::Lower>());
-    return es.eigenvectors().rightCols(count).rowwise().reverse();
-  }
-  return z.rightCols(count).rowwise().reverse();  // LAPACK's come in ascending order
+  if (info != 0) return fallback();
+  work.assign(static_cast<size_t>(std::max(1.0, size)), 0.0);
+  std::vector<int> iwork(static_cast<size_t>(std::max(1, iwork_size)));
+  lwork = static_cast<int>(work.size());
+  int liwork = static_cast<int>(iwork.size());
+  dstemr_("V", "A", &n, d.data(), e.data(), &unused_bound, &unused_bound, &unused_index,
+          &unused_index, &m, w.data(), all.data(), &n, &n, isuppz.data(), &tryrac, work.data(),
+          &lwork, iwork.data(), &liwork, &info);
+  if (info != 0 || m != n) return fallback();
+  MatrixXd z = all.rightCols(count);
+  dormtr_("L", "L", "N", &n, &wanted, g.data(), &n, tau.data(), z.data(), &n, &size, &query, &info);
+  if (info != 0) return fallback();
+  work.assign(static_cast<size_t>(std::max(1.0, size)), 0.0);
+  lwork = static_cast<int>(work.size());
+  dormtr_("L", "L", "N", &n, &wanted, g.data(), &n, tau.data(), z.data(), &n, work.data(), &lwork,
+          &info);
+  if (info != 0) return fallback();
+  return z.rowwise().reverse();  // largest first (LAPACK's come ascending)
 }
 
 }  // namespace relight::baker

@@ -16,16 +16,17 @@ namespace {
 // One loop body per case so the compiler sees no branch inside it.
 template <bool kInner, bool kMoment>
 inline void Accumulate(const double* __restrict bq, const double* __restrict muq,
-                       const double* __restrict mvq, const double* f, size_t width,
+                       const double* __restrict mvq, const float* f, size_t width,
                        double* __restrict a, double* __restrict du, double* __restrict dv) {
   const double f0 = f[0], f1 = f[1], f2 = f[2], f3 = f[3], f4 = f[4];
   for (size_t j = 0; j < width; ++j) {
-    double t = a[j] + f0 * bq[j];
+    const double bj = bq[j];
+    double t = a[j] + f0 * bj;
     if constexpr (kMoment) t = t + (f3 * muq[j] + f4 * mvq[j]);
     a[j] = t;
     if constexpr (kInner) {
-      du[j] = du[j] + f1 * bq[j];
-      dv[j] = dv[j] + f2 * bq[j];
+      du[j] = du[j] + f1 * bj;
+      dv[j] = dv[j] + f2 * bj;
     }
   }
 }
@@ -33,7 +34,7 @@ inline void Accumulate(const double* __restrict bq, const double* __restrict muq
 }  // namespace
 
 RELIGHT_GATHER_CLONES
-void GatherNode(const GatherSources& src, const uint32_t* source, const double* factor,
+void GatherNode(const GatherSources& src, const uint32_t* source, const float* factor,
                 uint32_t count, bool inner, double* a, double* du, double* dv) {
   const size_t width = src.width;
   for (size_t j = 0; j < width; ++j) a[j] = 0;
@@ -42,7 +43,7 @@ void GatherNode(const GatherSources& src, const uint32_t* source, const double* 
   }
   for (uint32_t e = 0; e < count; ++e) {
     const size_t row = static_cast<size_t>(source[e]) * width;
-    const double* f = factor + kGatherCoefficients * static_cast<size_t>(e);
+    const float* f = factor + kGatherCoefficients * static_cast<size_t>(e);
     const double* bq = src.b + row;
     const bool moment = f[3] != 0 || f[4] != 0;
     const double* muq = src.mu + row;

@@ -65,13 +65,13 @@ HierarchicalSolver::HierarchicalSolver(Hierarchy hierarchy, std::vector<Hierarch
                        double f_rev, const std::array<double, 2>& g_rev) {
     const uint32_t e = fill[to]++;
     gather_source_[e] = from;
-    double* c = &gather_factor_[kGatherCoefficients * e];
-    c[0] = f;
-    c[1] = g[0];
-    c[2] = g[1];
+    float* c = &gather_factor_[kGatherCoefficients * e];
+    c[0] = static_cast<float>(f);
+    c[1] = static_cast<float>(g[0]);
+    c[2] = static_cast<float>(g[1]);
     const bool moment = options_.source_moments && !hierarchy_.nodes[from].leaf() && f_rev > 0;
-    c[3] = moment ? f * g_rev[0] / f_rev : 0.0;
-    c[4] = moment ? f * g_rev[1] / f_rev : 0.0;
+    c[3] = moment ? static_cast<float>(f * g_rev[0] / f_rev) : 0.0F;
+    c[4] = moment ? static_cast<float>(f * g_rev[1] / f_rev) : 0.0F;
   };
   for (const HierarchyLink& l : links_) {
     if (l.f_pq > 0) add(l.p, l.q, l.f_pq, l.g_pq, l.f_qp, l.g_qp);
@@ -85,6 +85,62 @@ HierarchicalSolver::HierarchicalSolver(Hierarchy hierarchy, std::vector<Hierarch
       child_weight_[k] = node.area_m2 / hierarchy_.nodes[node.parent].area_m2;
     }
     centre_uv_[k] = hierarchy_.PlaneCoords(node.surface, node.centre);
+  }
+  BuildCarry();
+}
+
+void HierarchicalSolver::BuildCarry() {
+  const std::vector<HierarchyNode>& nodes = hierarchy_.nodes;
+  struct Directed {
+    uint32_t to;
+    CarryEntry entry;
+  };
+  std::vector<Directed> directed;
+  directed.reserve(2 * clusters_.links.size());
+  // Light from `from` towards `dir` (unit, leaving it), times `scale`, onto
+  // `to`, arriving from -dir (cluster_links.h).
+  const auto add = [&](uint32_t from, uint32_t to, const Vec3& dir, double scale) {
+    if (scale == 0) return;
+    CarryEntry e;
+    e.from = from;
+    if (IsCluster(from)) {
+      for (int i = 0; i < 3; ++i) {
+        if (dir[i] == 0) continue;
+        e.from_bin[e.n_from] = static_cast<uint8_t>(ClusterBin(i, dir[i]));
+        e.from_weight[e.n_from++] = scale * std::abs(dir[i]);
+      }
+    } else {
+      e.from_weight[e.n_from++] = scale;
+    }
+    if (IsCluster(to)) {
+      for (int i = 0; i < 3; ++i) {
+        if (dir[i] == 0) continue;
+        e.to_bin[e.n_to] = static_cast<uint8_t>(ClusterBin(i, -dir[i]));
+        e.to_weight[e.n_to++] = std::abs(dir[i]);
+      }
+    } else {
+      const double cosine = -Dot(nodes[to].normal, dir);
+      if (!(cosine > 0)) return;
+      e.to_weight[e.n_to++] = cosine;
+    }
+    directed.push_back({to, e});
+  };
+  for (const ClusterLink& l : clusters_.links) {
+    const Vec3 back{-l.direction[0], -l.direction[1], -l.direction[2]};
+    add(l.a, l.b, l.direction, l.a_to_b);
+    add(l.b, l.a, back, l.b_to_a);
+  }
+  // Stable: within a receiver, the links' order (sorted by (a, b)).
+  std::stable_sort(directed.begin(), directed.end(),
+                   [](const Directed& x, const Directed& y) { return x.to < y.to; });
+  carry_entries_.reserve(directed.size());
+  for (size_t k = 0; k < directed.size(); ++k) {
+    if (k == 0 || directed[k].to != directed[k - 1].to) {
+      const auto at = static_cast<uint32_t>(k);
+      carry_targets_.push_back({directed[k].to, at, at});
+    }
+    carry_entries_.push_back(directed[k].entry);
+    ++carry_targets_.back().end;
   }
 }
 
@@ -221,44 +277,25 @@ void HierarchicalSolver::SolveBlock(const Task& task, const Eigen::MatrixXd& rhs
     }
     std::fill(in_bins.begin(), in_bins.end(), 0.0);
     std::fill(ge.begin(), ge.end(), 0.0);
-    // Light from element `from` towards direction `dir` (unit, leaving it),
-    // times `scale` (ClusterLink), onto element `to`, arriving from -dir.
-    const auto carry = [&](uint32_t from, uint32_t to, const Vec3& dir, double scale) {
-      if (scale == 0) return;
-      const double* from_rows[3];
-      double* to_rows[3];
-      double from_weight[3], to_weight[3];
-      int n_from = 0, n_to = 0;
-      if (IsCluster(from)) {
-        const size_t c = ClusterIndex(from);
-        for (int i = 0; i < 3; ++i) {
-          if (dir[i] == 0) continue;
-          from_rows[n_from] = bin(out_bins, c, ClusterBin(i, dir[i])).data();
-          from_weight[n_from++] = scale * std::abs(dir[i]);
+    // Each receiving element gathers its links (BuildCarry) into its rows.
+    for (const CarryTarget& t : carry_targets_) {
+      const bool to_cluster = IsCluster(t.to);
+      double* to_base =
+          to_cluster ? bin(in_bins, ClusterIndex(t.to), 0).data() : row(ge, t.to).data();
+      for (uint32_t k = t.begin; k < t.end; ++k) {
+        const CarryEntry& e = carry_entries_[k];
+        const double* from_rows[3];
+        double* to_rows[3];
+        if (IsCluster(e.from)) {
+          const size_t c = ClusterIndex(e.from);
+          for (int i = 0; i < e.n_from; ++i) from_rows[i] = bin(out_bins, c, e.from_bin[i]).data();
+        } else {
+          from_rows[0] = crow(b, e.from).data();
         }
-      } else {
-        from_rows[n_from] = crow(b, from).data();
-        from_weight[n_from++] = scale;
+        for (int i = 0; i < e.n_to; ++i) to_rows[i] = to_base + e.to_bin[i] * ws;
+        CarryLight(from_rows, e.from_weight.data(), e.n_from, to_rows, e.to_weight.data(), e.n_to,
+                   ws);
       }
-      if (IsCluster(to)) {
-        const size_t c = ClusterIndex(to);
-        for (int i = 0; i < 3; ++i) {
-          if (dir[i] == 0) continue;
-          to_rows[n_to] = bin(in_bins, c, ClusterBin(i, -dir[i])).data();
-          to_weight[n_to++] = std::abs(dir[i]);
-        }
-      } else {
-        const double cosine = -Dot(nodes[to].normal, dir);
-        if (!(cosine > 0)) return;
-        to_rows[n_to] = row(ge, to).data();
-        to_weight[n_to++] = cosine;
-      }
-      CarryLight(from_rows, from_weight, n_from, to_rows, to_weight, n_to, ws);
-    };
-    for (const ClusterLink& l : clusters_.links) {
-      const Vec3 back{-l.direction[0], -l.direction[1], -l.direction[2]};
-      carry(l.a, l.b, l.direction, l.a_to_b);
-      carry(l.b, l.a, back, l.b_to_a);
     }
     // Arriving: down to the members, parents before children.
     for (size_t c = 0; c < tree.clusters.size(); ++c) {

@@ -96,10 +96,29 @@ class HierarchicalSolver {
   std::array<int, 3> same_as_{};  // channel whose reflectances this one repeats (itself if none)
   // Gather lists: node n gathers from gather_source[k] with factor
   // gather_factor[k] (5 per entry: mean, d/du, d/dv over n, weights of the
-  // source's exitance moment u, v),
+  // source's exitance moment u, v; float: gather_kernel.h says why),
   // k in [gather_offsets[n], gather_offsets[n + 1]).
   std::vector<uint32_t> gather_offsets_, gather_source_;
-  std::vector<double> gather_factor_;
+  std::vector<float> gather_factor_;
+  // The cluster links as their receiving elements gather them: entries
+  // grouped by `to`, so each element's rows are written while they are in
+  // the cache, not once per link at scattered places. A link gives two
+  // entries (one per direction); the light leaving `from` towards the
+  // receiver is its rows (a cluster's direction bins, or a node's exitance)
+  // weighted by from_weight, and it arrives at `to`'s rows (bins, or the
+  // node's irradiance) weighted by to_weight.
+  struct CarryEntry {
+    uint32_t from = 0;
+    uint8_t n_from = 0, n_to = 0;
+    std::array<uint8_t, 3> from_bin{}, to_bin{};
+    std::array<double, 3> from_weight{}, to_weight{};
+  };
+  struct CarryTarget {
+    uint32_t to = 0, begin = 0, end = 0;  // entries [begin, end)
+  };
+  void BuildCarry();
+  std::vector<CarryEntry> carry_entries_;
+  std::vector<CarryTarget> carry_targets_;
   std::vector<double> child_weight_;  // area of a node over its parent's
   std::vector<std::array<double, 2>> centre_uv_;  // per node, in its surface's frame
   mutable std::atomic<int> max_sweeps_used_{0};
