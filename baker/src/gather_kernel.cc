@@ -62,26 +62,36 @@ void GatherNode(const GatherSources& src, const uint32_t* source, const float* f
   }
 }
 
+namespace {
+
+// CarryLight for kFrom source rows and kTo receiving rows: fixed counts, so
+// the loop over the columns is a plain vector loop.
+template <int kFrom, int kTo>
+inline void Carry(const double* const* from, const double* from_weight, double* const* to,
+                  const double* to_weight, size_t width) {
+  for (size_t j = 0; j < width; ++j) {
+    double light = 0;
+    for (int i = 0; i < kFrom; ++i) light = light + from_weight[i] * from[i][j];
+    for (int k = 0; k < kTo; ++k) to[k][j] = to[k][j] + to_weight[k] * light;
+  }
+}
+
+}  // namespace
+
 RELIGHT_GATHER_CLONES
 void CarryLight(const double* const* from, const double* from_weight, int n_from, double* const* to,
                 const double* to_weight, int n_to, size_t width) {
-  // Rows outermost, columns innermost (vectorised), a chunk of columns at a
-  // time.
-  constexpr size_t kChunk = 32;
-  double light[kChunk];
-  for (size_t j0 = 0; j0 < width; j0 += kChunk) {
-    const size_t n = width - j0 < kChunk ? width - j0 : kChunk;
-    for (size_t j = 0; j < n; ++j) light[j] = 0;
-    for (int i = 0; i < n_from; ++i) {
-      const double w = from_weight[i];
-      const double* __restrict row = from[i] + j0;
-      for (size_t j = 0; j < n; ++j) light[j] = light[j] + w * row[j];
-    }
-    for (int k = 0; k < n_to; ++k) {
-      const double w = to_weight[k];
-      double* __restrict row = to[k] + j0;
-      for (size_t j = 0; j < n; ++j) row[j] = row[j] + w * light[j];
-    }
+  switch (3 * (n_from - 1) + (n_to - 1)) {
+    case 0: return Carry<1, 1>(from, from_weight, to, to_weight, width);
+    case 1: return Carry<1, 2>(from, from_weight, to, to_weight, width);
+    case 2: return Carry<1, 3>(from, from_weight, to, to_weight, width);
+    case 3: return Carry<2, 1>(from, from_weight, to, to_weight, width);
+    case 4: return Carry<2, 2>(from, from_weight, to, to_weight, width);
+    case 5: return Carry<2, 3>(from, from_weight, to, to_weight, width);
+    case 6: return Carry<3, 1>(from, from_weight, to, to_weight, width);
+    case 7: return Carry<3, 2>(from, from_weight, to, to_weight, width);
+    case 8: return Carry<3, 3>(from, from_weight, to, to_weight, width);
+    default: return;  // no rows on one side: nothing to carry
   }
 }
 
