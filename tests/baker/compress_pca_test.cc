@@ -71,6 +71,25 @@ TEST(DenseBlas, TopEigenvectorsOfASmallMatrixAskedForAll) {
   }
 }
 
+TEST(DenseBlas, TopEigenvectorsOfZeroAndOneByOneMatrices) {
+  // A cluster whose receivers all have the same basis (an unlit corner):
+  // after the mean is taken out its Gram matrix is zero. Any orthonormal
+  // vectors will do, but they must be unit and finite.
+  MatrixXd zero = MatrixXd::Zero(243, 243);
+  const MatrixXd top = TopEigenvectors(zero, 32);
+  ASSERT_EQ(top.cols(), 32);
+  ASSERT_TRUE(top.allFinite());
+  const MatrixXd gram = top.transpose() * top;
+  EXPECT_LT((gram - MatrixXd::Identity(32, 32)).cwiseAbs().maxCoeff(), 1e-12);
+  // A cluster of one receiver (the last of a basis 2049 receivers long).
+  MatrixXd one(1, 1);
+  one << 2.5;
+  const MatrixXd v = TopEigenvectors(one, 32);
+  ASSERT_EQ(v.rows(), 1);
+  ASSERT_EQ(v.cols(), 1);
+  EXPECT_DOUBLE_EQ(std::abs(v(0, 0)), 1.0);
+}
+
 TEST(CompressBasis, SameResultWithOneThreadOrTwo) {
   // Three channels of 1500 receivers x 25 terms (degree 4).
   const Index receivers = 1500, terms = 25;
