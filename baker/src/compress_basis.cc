@@ -237,11 +237,9 @@ CompressionStats CompressBasis(const std::array<MatrixXd, 3>& basis, const std::
   std::vector<Candidate> passing;
   std::vector<std::vector<ClusterPca>> by_size;
   std::vector<uint32_t> sizes;
-  const auto cluster_count = [&](uint32_t n) { return (receivers + n - 1) / n; };
-  const auto evaluate = [&](uint32_t n) {
-    const Index clusters = cluster_count(n);
-    for (uint32_t tried : sizes)
-      if (cluster_count(tried) == clusters) return;
+  for (uint32_t n : kClusterSizes) {
+    const Index clusters = (receivers + n - 1) / n;
+    if (!sizes.empty() && (receivers + sizes.back() - 1) / sizes.back() == clusters) continue;
     std::vector<ClusterPca> pcas(static_cast<size_t>(clusters));
     ParallelFor(static_cast<size_t>(clusters), threads, [&](size_t c, int) {
       const Index start = static_cast<Index>(c) * n;
@@ -280,8 +278,7 @@ CompressionStats CompressBasis(const std::array<MatrixXd, 3>& basis, const std::
     }
     sizes.push_back(n);
     by_size.push_back(std::move(pcas));
-  };
-  for (uint32_t n : kClusterSizes) evaluate(n);
+  }
   std::sort(passing.begin(), passing.end(),
             [](const Candidate& a, const Candidate& b) { return a.bytes < b.bytes; });
   constexpr size_t kTries = 4;

@@ -13,9 +13,9 @@ void dgemm_(const char* transa, const char* transb, const int* m, const int* n, 
 void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha,
             const double* a, const int* lda, const double* beta, double* c, const int* ldc);
 // The symmetric eigenproblem in its three steps, so that only the few
-// eigenvectors the PCA keeps are computed and transformed back: reduction
-// to tridiagonal form, MRRR on a range of indices (dstemr; dsyevr would
-// switch to bisection for a range), and the back-transformation of those.
+// eigenvectors the PCA keeps are transformed back: reduction to tridiagonal
+// form, every eigenpair of that by MRRR (dstemr), and the
+// back-transformation of the kept ones (dsyevr would transform them all).
 void dsytrd_(const char* uplo, const int* n, double* a, const int* lda, double* d, double* e,
              double* tau, double* work, const int* lwork, int* info);
 void dstemr_(const char* jobz, const char* range, const int* n, double* d, double* e,
