@@ -246,19 +246,28 @@ const Eigen::VectorXd& Reflectance(const BakerCore& core, int channel) {
                                   : core.solver->reflectance(channel);
 }
 
-Eigen::MatrixXd AverageToVertices(const Mesh& mesh, const Eigen::MatrixXd& per_patch) {
-  Eigen::MatrixXd out =
-      Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(mesh.vertex_count()), per_patch.cols());
+Eigen::MatrixXd AverageToVertices(const Mesh& mesh, const Eigen::MatrixXd& per_patch, int threads) {
+  const Eigen::Index vertices = static_cast<Eigen::Index>(mesh.vertex_count());
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(vertices, per_patch.cols());
+  std::vector<double> area(mesh.vertex_count(), 0.0);
   for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-    double area = 0;
-    for (uint32_t k = mesh.vertex_patch_offsets[v]; k < mesh.vertex_patch_offsets[v + 1]; ++k) {
-      const uint32_t i = mesh.vertex_patch_ids[k];
-      const double a = mesh.patches[i].area_m2;
-      out.row(static_cast<Eigen::Index>(v)) += a * per_patch.row(static_cast<Eigen::Index>(i));
-      area += a;
-    }
-    if (area > 0) out.row(static_cast<Eigen::Index>(v)) /= area;
+    for (uint32_t k = mesh.vertex_patch_offsets[v]; k < mesh.vertex_patch_offsets[v + 1]; ++k)
+      area[v] += mesh.patches[mesh.vertex_patch_ids[k]].area_m2;
   }
+  // Column by column (the matrices are column-major), columns in parallel;
+  // each value is summed over its patches in the same order as ever.
+  ParallelFor(static_cast<size_t>(per_patch.cols()), threads, [&](size_t j, int) {
+    const double* in = per_patch.col(static_cast<Eigen::Index>(j)).data();
+    double* col = out.col(static_cast<Eigen::Index>(j)).data();
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+      double sum = 0;
+      for (uint32_t k = mesh.vertex_patch_offsets[v]; k < mesh.vertex_patch_offsets[v + 1]; ++k) {
+        const uint32_t i = mesh.vertex_patch_ids[k];
+        sum += mesh.patches[i].area_m2 * in[i];
+      }
+      col[v] = area[v] > 0 ? sum / area[v] : sum;
+    }
+  });
   return out;
 }
 

@@ -59,7 +59,9 @@ Eigen::VectorXd PatchIlluminance(const LuminaireDirect& direct, Intensity intens
 }
 
 // Area-weighted average over the patches around each vertex: rows of
-// `per_patch` (patches x k) to rows of the result (vertices x k).
-Eigen::MatrixXd AverageToVertices(const Mesh& mesh, const Eigen::MatrixXd& per_patch);
+// `per_patch` (patches x k) to rows of the result (vertices x k); columns
+// on `threads` (as ParallelFor takes them).
+Eigen::MatrixXd AverageToVertices(const Mesh& mesh, const Eigen::MatrixXd& per_patch,
+                                  int threads = 1);
 
 }  // namespace relight::baker

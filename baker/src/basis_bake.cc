@@ -9,6 +9,7 @@
 #include "baker_core.h"
 #include "compress_luminaire.h"
 #include "luminaire_basis.h"
+#include "parallel_for.h"
 #include "quantise.h"
 #include "reference.h"
 #include "relight/baker/baker.h"
@@ -60,19 +61,19 @@ BakeGrid MakeBakeGrid(const CalcGrid& grid) {
 }
 
 // Term-major basis[(t * count + r) * 3 + c], one scale per (term, channel).
-BakeLightReceivers QuantiseReceivers(const ReceiverBasis& in) {
+BakeLightReceivers QuantiseReceivers(const ReceiverBasis& in, int threads) {
   BakeLightReceivers out;
   const size_t count = static_cast<size_t>(in.basis[0].rows());
   const size_t terms = static_cast<size_t>(in.basis[0].cols());
   out.basis.assign(terms * count * 3, 0);
   out.basis_scale.resize(terms * 3);
-  for (size_t t = 0; t < terms; ++t) {
+  ParallelFor(terms, threads, [&](size_t t, int) {  // a venue's basis is 10^7 values
     for (int c = 0; c < 3; ++c) {
       out.basis_scale[t * 3 + c] =
           QuantiseInt16(in.basis[c].col(static_cast<Eigen::Index>(t)).data(), count, 1,
                         &out.basis[t * count * 3 + c], 3);
     }
-  }
+  });
   if (!in.direct.empty()) {
     std::vector<double> g;
     g.reserve(in.direct.size());
@@ -87,7 +88,7 @@ BakeLightReceivers QuantiseReceivers(const ReceiverBasis& in) {
 }
 
 BakeLuminaire MakeBakeLuminaire(const Luminaire& lum, const LuminaireBasis& basis,
-                                int lid_samples) {
+                                int lid_samples, int threads) {
   BakeLuminaire out;
   out.name = lum.name;
   PutQ16_16(lum.position, out.position);
@@ -100,7 +101,7 @@ BakeLuminaire MakeBakeLuminaire(const Luminaire& lum, const LuminaireBasis& basi
   out.default_dimmer = ToLevelQ1_15(lum.dimmer).raw();
   for (int c = 0; c < 3; ++c) out.default_rgb[c] = ToLevelQ1_15(lum.colour[c]).raw();
   FillBakeLuminaireLid(lum, basis.degree, lid_samples, &out);  // mounting, frame, LID
-  for (const ReceiverBasis& set : basis.sets) out.receivers.push_back(QuantiseReceivers(set));
+  for (const ReceiverBasis& set : basis.sets) out.receivers.push_back(QuantiseReceivers(set, threads));
   return out;
 }
 
@@ -177,7 +178,7 @@ relight::Bake Baker::BakePart(const std::function<bool(size_t)>& mine, bool whol
     if (!mine(l)) continue;
     const LuminaireBasis basis = ComputeLuminaireBasis(core, l, EffectiveDirectMode(core));
     bake.luminaires.push_back(
-        MakeBakeLuminaire(scene.luminaires[l], basis, core.options.lid_samples));
+        MakeBakeLuminaire(scene.luminaires[l], basis, core.options.lid_samples, core.options.threads));
     std::vector<ReceiverSetInput> sets(basis.sets.size());
     for (size_t s = 0; s < sets.size(); ++s) {
       sets[s].basis = &basis.sets[s].basis;

@@ -6,6 +6,7 @@
 
 #include "dense_blas.h"
 #include "parallel_for.h"
+#include "pca_error_kernel.h"
 #include "quantise.h"
 
 namespace relight::baker {
@@ -14,7 +15,8 @@ namespace {
 // Cluster lengths tried (multiples of 16: the kernel's vector width) and the
 // most components searched; the format allows more (kMaxCompressedComponents).
 // Every length wins for some luminaire (the bytes against the length are not
-// monotonic), so all are searched.
+// monotonic), so all are searched. Each is half the one before: a cluster is
+// two of the next length (AllClusterPcas merges their moments).
 constexpr uint32_t kClusterSizes[] = {2048, 1024, 512, 256, 128};
 constexpr uint32_t kMaxSearchedComponents = 32;
 // Unquantised candidates must meet this share of the target: quantising the
@@ -72,41 +74,151 @@ struct ClusterPca {
   MatrixXd max_err, sum_err;
 };
 
-ClusterPca Pca(const MatrixXd& x, Index start, Index size, Index rmax, const MatrixXd& k) {
+// The run of receivers [start, start + count): its mean and the lower
+// triangle of its centred Gram matrix (3T x 3T).
+struct RunMoments {
+  Index start = 0, count = 0;
+  VectorXd mean;
+  MatrixXd gram;
+};
+
+RunMoments Moments(const MatrixXd& x, Index start, Index count) {
+  RunMoments m;
+  m.start = start;
+  m.count = count;
+  MatrixXd y = x.middleRows(start, count);
+  m.mean = y.colwise().mean().transpose();
+  y.rowwise() -= m.mean.transpose();
+  m.gram = LowerGram(y, false);
+  return m;
+}
+
+// Two adjacent runs as one, from their moments alone (the pairwise update
+// of Chan, Golub & LeVeque 1979): the longer cluster lengths cost no pass
+// over the receivers.
+RunMoments Merge(const RunMoments& a, const RunMoments& b) {
+  RunMoments m;
+  m.start = a.start;
+  m.count = a.count + b.count;
+  const VectorXd delta = b.mean - a.mean;
+  const double na = static_cast<double>(a.count), nb = static_cast<double>(b.count);
+  m.mean = a.mean + (nb / (na + nb)) * delta;
+  m.gram = a.gram + b.gram;
+  m.gram.selfadjointView<Eigen::Lower>().rankUpdate(delta, na * nb / (na + nb));
+  return m;
+}
+
+// Subspace iteration's power steps for the principal directions: one
+// gives the same compressed sizes as exact eigenvectors on the venue's
+// bases (docs/venue.md) at a third of the cost.
+constexpr int kPowerSteps = 1;
+
+// Weights and the errors at the looks of a cluster whose mean and
+// principal directions are set, read from the uncentred rows of x.
+void FitCluster(const MatrixXd& x, const MatrixXd& k, ClusterPca* p) {
+  const auto rows = x.middleRows(p->start, p->size);
+  const Index rc = p->vectors.cols();
+  p->weights = Multiply(rows, p->vectors);
+  p->weights.rowwise() -= p->mean.transpose() * p->vectors;
+  // Errors at the looks for r = 0 .. rc, channel by channel: a look's
+  // residual column (in L1) loses one component per pass.
+  const Index t = k.rows(), looks = k.cols();
+  p->max_err = MatrixXd::Zero(rc + 1, looks);
+  p->sum_err = MatrixXd::Zero(rc + 1, looks);
+  for (int c = 0; c < 3; ++c) {
+    MatrixXd residual = Multiply(rows.middleCols(c * t, t), k);  // size x looks
+    residual.rowwise() -= p->mean.segment(c * t, t).transpose() * k;
+    const MatrixXd f = Multiply(p->vectors.middleRows(c * t, t), k, true);  // rc x looks
+    for (Index l = 0; l < looks; ++l) {
+      double* column = residual.col(l).data();
+      for (Index r = 0; r <= rc; ++r) {
+        const double* w = r > 0 ? p->weights.col(r - 1).data() : nullptr;
+        const AbsStats e = SubtractAndMeasure(column, w, r > 0 ? f(r - 1, l) : 0.0,
+                                              static_cast<size_t>(p->size));
+        p->max_err(r, l) = std::max(p->max_err(r, l), e.max);
+        p->sum_err(r, l) += e.sum;
+      }
+    }
+  }
+}
+
+// A cluster of at least 3T receivers, from its moments.
+ClusterPca PcaOfMoments(const MatrixXd& x, const RunMoments& m, Index rmax, const MatrixXd& k) {
+  ClusterPca p;
+  p.start = m.start;
+  p.size = m.count;
+  p.mean = m.mean;
+  p.vectors = LeadingEigenvectors(m.gram, std::min({rmax, m.count, x.cols()}), kPowerSteps);
+  FitCluster(x, k, &p);
+  return p;
+}
+
+// A cluster of fewer receivers than 3T: its rows' Gram matrix is the smaller.
+ClusterPca PcaOfFewRows(const MatrixXd& x, Index start, Index size, Index rmax, const MatrixXd& k) {
   ClusterPca p;
   p.start = start;
   p.size = size;
   MatrixXd y = x.middleRows(start, size);
   p.mean = y.colwise().mean().transpose();
   y.rowwise() -= p.mean.transpose();
-  const Index d = y.cols();
-  const Index rc = std::min({rmax, size, d});
-  if (size >= d) {
-    MatrixXd gram = LowerGram(y, false);
-    p.vectors = TopEigenvectors(gram, rc);
-  } else {  // fewer receivers than dimensions: the Gram matrix is smaller
-    MatrixXd gram = LowerGram(y, true);
-    p.vectors = Multiply(y, TopEigenvectors(gram, rc), true);
-    for (Index j = 0; j < rc; ++j) {
-      const double norm = p.vectors.col(j).norm();
-      p.vectors.col(j) = norm > 0 ? VectorXd(p.vectors.col(j) / norm) : VectorXd::Zero(d);
-    }
-  }
-  p.weights = Multiply(y, p.vectors);
-  // Errors at the looks for r = 0 .. rc, channel by channel.
-  const Index t = k.rows(), looks = k.cols();
-  p.max_err = MatrixXd::Zero(rc + 1, looks);
-  p.sum_err = MatrixXd::Zero(rc + 1, looks);
-  for (int c = 0; c < 3; ++c) {
-    MatrixXd residual = Multiply(y.middleCols(c * t, t), k);  // size x looks
-    const MatrixXd f = p.vectors.middleRows(c * t, t).transpose() * k;  // rc x looks
-    for (Index r = 0; r <= rc; ++r) {
-      p.max_err.row(r) = p.max_err.row(r).cwiseMax(residual.cwiseAbs().colwise().maxCoeff());
-      p.sum_err.row(r) += residual.cwiseAbs().colwise().sum();
-      if (r < rc) residual -= p.weights.col(r) * f.row(r);
-    }
-  }
+  const Index d = y.cols(), rc = std::min({rmax, size, d});
+  // y^T u is along the principal direction of u, scaled by its singular
+  // value; made orthonormal in order (Householder QR), since beyond the
+  // cluster's rank those values are rounding noise and y^T u points anywhere.
+  const MatrixXd directions =
+      Multiply(y, LeadingEigenvectors(LowerGram(y, true), rc, kPowerSteps), true);
+  const Eigen::HouseholderQR<MatrixXd> qr(directions);
+  p.vectors = qr.householderQ() * MatrixXd::Identity(d, rc);
+  FitCluster(x, k, &p);
   return p;
+}
+
+// Every cluster of every length in `sizes` (each a power-of-two fraction of
+// kClusterSizes[0]), into pcas[size index][cluster]. Tasks take one run of
+// the longest length: its shortest clusters of at least 3T receivers get
+// their moments from the receivers, the longer ones by merging pairs.
+void AllClusterPcas(const MatrixXd& x, const MatrixXd& k, const std::vector<uint32_t>& sizes,
+                    int threads, std::vector<std::vector<ClusterPca>>* pcas) {
+  const Index receivers = x.rows(), d = x.cols();
+  const Index longest = kClusterSizes[0];
+  Index base = 0;  // the shortest length of at least d receivers (0: none is)
+  for (uint32_t n : kClusterSizes)
+    if (static_cast<Index>(n) >= d) base = n;
+  pcas->assign(sizes.size(), {});
+  for (size_t i = 0; i < sizes.size(); ++i)
+    (*pcas)[i].resize(static_cast<size_t>((receivers + sizes[i] - 1) / sizes[i]));
+  const auto slot = [&](Index length, Index start) -> ClusterPca* {
+    for (size_t i = 0; i < sizes.size(); ++i)
+      if (sizes[i] == length) return &(*pcas)[i][static_cast<size_t>(start / length)];
+    return nullptr;  // a length that gives the same clusters as a longer one
+  };
+  const size_t runs = static_cast<size_t>((receivers + longest - 1) / longest);
+  ParallelFor(runs, threads, [&](size_t run, int) {
+    const Index begin = static_cast<Index>(run) * longest;
+    const Index end = std::min(begin + longest, receivers);
+    for (uint32_t n : sizes) {  // lengths shorter than 3T
+      const Index length = n;
+      if (base > 0 && length >= base) continue;
+      for (Index s = begin; s < end; s += length)
+        *slot(length, s) = PcaOfFewRows(x, s, std::min(length, end - s), kMaxSearchedComponents, k);
+    }
+    if (base == 0) return;
+    std::vector<RunMoments> level;
+    for (Index s = begin; s < end; s += base) level.push_back(Moments(x, s, std::min(base, end - s)));
+    for (Index length = base;; length *= 2) {
+      for (const RunMoments& m : level) {
+        if (ClusterPca* out = slot(length, m.start)) {
+          *out = m.count >= d ? PcaOfMoments(x, m, kMaxSearchedComponents, k)
+                              : PcaOfFewRows(x, m.start, m.count, kMaxSearchedComponents, k);
+        }
+      }
+      if (length >= longest) break;
+      std::vector<RunMoments> up;
+      for (size_t j = 0; j < level.size(); j += 2)
+        up.push_back(j + 1 < level.size() ? Merge(level[j], level[j + 1]) : std::move(level[j]));
+      level = std::move(up);
+    }
+  });
 }
 
 uint64_t CompressedMemory(uint64_t terms, uint64_t receivers, uint64_t clusters, uint64_t r) {
@@ -234,17 +346,19 @@ CompressionStats CompressBasis(const std::array<MatrixXd, 3>& basis, const std::
   if (receivers == 0 || terms == 0 || looks.empty()) return stats;
   const MatrixXd k = LookMatrix(looks, terms);
   const VectorXd peak = LookPeaks(x, k, direct, threads);
-  std::vector<Candidate> passing;
-  std::vector<std::vector<ClusterPca>> by_size;
-  std::vector<uint32_t> sizes;
+  std::vector<uint32_t> sizes;  // lengths that give different cluster counts
   for (uint32_t n : kClusterSizes) {
-    const Index clusters = (receivers + n - 1) / n;
-    if (!sizes.empty() && (receivers + sizes.back() - 1) / sizes.back() == clusters) continue;
-    std::vector<ClusterPca> pcas(static_cast<size_t>(clusters));
-    ParallelFor(static_cast<size_t>(clusters), threads, [&](size_t c, int) {
-      const Index start = static_cast<Index>(c) * n;
-      pcas[c] = Pca(x, start, std::min<Index>(n, receivers - start), kMaxSearchedComponents, k);
-    });
+    if (!sizes.empty() && (receivers + sizes.back() - 1) / sizes.back() == (receivers + n - 1) / n)
+      continue;
+    sizes.push_back(n);
+  }
+  std::vector<std::vector<ClusterPca>> by_size;
+  AllClusterPcas(x, k, sizes, threads, &by_size);
+  std::vector<Candidate> passing;
+  for (size_t si = 0; si < sizes.size(); ++si) {
+    const uint32_t n = sizes[si];
+    const std::vector<ClusterPca>& pcas = by_size[si];
+    const Index clusters = static_cast<Index>(pcas.size());
     Index rc = 0;
     for (const ClusterPca& p : pcas) rc = std::max(rc, p.max_err.rows() - 1);
     for (Index r = 0; r <= rc; ++r) {
@@ -276,8 +390,6 @@ CompressionStats CompressBasis(const std::array<MatrixXd, 3>& basis, const std::
         passing.push_back(cand);
       }
     }
-    sizes.push_back(n);
-    by_size.push_back(std::move(pcas));
   }
   std::sort(passing.begin(), passing.end(),
             [](const Candidate& a, const Candidate& b) { return a.bytes < b.bytes; });

@@ -5,6 +5,7 @@
 
 #include "compress_basis.h"
 #include "compression_looks.h"
+#include "parallel_for.h"
 
 namespace relight::baker {
 namespace {
@@ -33,10 +34,11 @@ void CompressLuminaireBases(const Luminaire& lum, size_t index, int degree,
       continue;
     }
     std::vector<Eigen::MatrixXd> direct;
-    if (!sets[s].direction.empty()) {
-      for (const CompressionLook& look : looks) {
-        direct.push_back(DirectAtLook(lum.lid, look.frame, sets[s].direction, sets[s].g_m2, sets[s].rho));
-      }
+    if (!sets[s].direction.empty()) {  // each look on its own: a venue has 10^5 receivers
+      direct.resize(looks.size());
+      ParallelFor(looks.size(), options.threads, [&](size_t l, int) {
+        direct[l] = DirectAtLook(lum.lid, looks[l].frame, sets[s].direction, sets[s].g_m2, sets[s].rho);
+      });
     }
     std::vector<CompressionPoint> curve;
     BakeCompressedBasis cpca;

@@ -25,6 +25,13 @@ void dstemr_(const char* jobz, const char* range, const int* n, double* d, doubl
 void dormtr_(const char* side, const char* uplo, const char* trans, const int* m, const int* n,
              const double* a, const int* lda, const double* tau, double* c, const int* ldc,
              double* work, const int* lwork, int* info);
+void dsymm_(const char* side, const char* uplo, const int* m, const int* n, const double* alpha,
+            const double* a, const int* lda, const double* b, const int* ldb, const double* beta,
+            double* c, const int* ldc);
+void dgeqrf_(const int* m, const int* n, double* a, const int* lda, double* tau, double* work,
+             const int* lwork, int* info);
+void dorgqr_(const int* m, const int* n, const int* k, double* a, const int* lda,
+             const double* tau, double* work, const int* lwork, int* info);
 // OpenBLAS only: weak, so any other BLAS links as well.
 void openblas_set_num_threads(int) __attribute__((weak));
 }
@@ -120,6 +127,74 @@ MatrixXd TopEigenvectors(MatrixXd& g, Index count) {
           &info);
   if (info != 0) return fallback();
   return z.rowwise().reverse();  // largest first (LAPACK's come ascending)
+}
+
+namespace {
+
+// y = g q for symmetric g (lower triangle).
+void SymmetricProduct(const MatrixXd& g, const MatrixXd& q, MatrixXd* y) {
+  const int n = Int(g.rows()), l = Int(q.cols());
+  const double one = 1, zero = 0;
+  y->resize(g.rows(), q.cols());
+  dsymm_("L", "L", &n, &l, &one, g.data(), &n, q.data(), &n, &zero, y->data(), &n);
+}
+
+// q's columns replaced by an orthonormal basis of their span (Householder
+// QR); false when LAPACK refuses.
+bool Orthonormalise(MatrixXd* q) {
+  const int m = Int(q->rows()), l = Int(q->cols()), query = -1;
+  std::vector<double> tau(static_cast<size_t>(l));
+  double size = 0, size2 = 0;
+  int info = 0;
+  dgeqrf_(&m, &l, q->data(), &m, tau.data(), &size, &query, &info);
+  if (info != 0) return false;
+  dorgqr_(&m, &l, &l, q->data(), &m, tau.data(), &size2, &query, &info);
+  if (info != 0) return false;
+  std::vector<double> work(static_cast<size_t>(std::max({1.0, size, size2})));
+  const int lwork = static_cast<int>(work.size());
+  dgeqrf_(&m, &l, q->data(), &m, tau.data(), work.data(), &lwork, &info);
+  if (info != 0) return false;
+  dorgqr_(&m, &l, &l, q->data(), &m, tau.data(), work.data(), &lwork, &info);
+  return info == 0;
+}
+
+}  // namespace
+
+MatrixXd LeadingEigenvectors(const MatrixXd& g, Index count, int power_steps) {
+  const Index n = g.rows();
+  count = std::min<Index>(count, n);
+  const Index l = std::min<Index>(n, count + kSubspaceOversampling);
+  if (count == 0 || 2 * l > n) {  // small: the exact route is as cheap
+    MatrixXd copy = g;
+    return TopEigenvectors(copy, count);
+  }
+  // A fixed start (splitmix64 to uniform [-1, 1)), the same on every
+  // machine, so bakes are reproducible.
+  MatrixXd q(n, l);
+  uint64_t state = 0x9e3779b97f4a7c15ull;
+  for (Index i = 0; i < q.size(); ++i) {
+    uint64_t z = (state += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    z ^= z >> 31;
+    q.data()[i] = static_cast<double>(z >> 11) * 0x1.0p-52 - 1.0;
+  }
+  MatrixXd y;
+  for (int step = 0; step <= power_steps; ++step) {
+    SymmetricProduct(g, q, &y);
+    q.swap(y);
+    if (!Orthonormalise(&q)) {
+      MatrixXd copy = g;
+      return TopEigenvectors(copy, count);
+    }
+  }
+  // Rayleigh-Ritz on the subspace: the l x l matrix q^T g q, its leading
+  // eigenvectors taken back.
+  SymmetricProduct(g, q, &y);
+  MatrixXd small = Multiply(q, y, true);
+  small = (0.5 * (small + small.transpose())).eval();
+  const MatrixXd top = TopEigenvectors(small, count);
+  return Multiply(q, top);
 }
 
 }  // namespace relight::baker

@@ -22,4 +22,16 @@ Eigen::MatrixXd LowerGram(const ConstMatrixRef& y, bool of_rows);
 // (its lower triangle is read), largest first; g is overwritten.
 Eigen::MatrixXd TopEigenvectors(Eigen::MatrixXd& g, Eigen::Index count);
 
+// Columns added to the subspace LeadingEigenvectors iterates on.
+constexpr Eigen::Index kSubspaceOversampling = 16;
+
+// Nearly the `count` leading unit eigenvectors of symmetric positive
+// semi-definite g (lower triangle read), largest first, orthonormal: by
+// subspace iteration from a fixed start and a Rayleigh-Ritz step (Halko,
+// Martinsson & Tropp 2011, "Finding structure with randomness", 4.4 and
+// 5.3), all in matrix products. What they miss of g's leading eigenspace
+// shrinks with each power step; small g goes to TopEigenvectors.
+Eigen::MatrixXd LeadingEigenvectors(const Eigen::MatrixXd& g, Eigen::Index count,
+                                    int power_steps);
+
 }  // namespace relight::baker

@@ -15,7 +15,7 @@ using radiosity_vec::Dot;
 // Columns per block: a block's three node arrays stay within the shared
 // cache for tens of thousands of nodes, and a luminaire's terms split into
 // several blocks so both cores get work.
-constexpr Eigen::Index kMaxBlockColumns = 32;
+constexpr Eigen::Index kMaxBlockColumns = 48;
 
 using Row = Eigen::Map<Eigen::ArrayXd>;
 using ConstRow = Eigen::Map<const Eigen::ArrayXd>;

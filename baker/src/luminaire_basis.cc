@@ -65,7 +65,7 @@ LuminaireBasis ComputeLuminaireBasis(const BakerCore& core, size_t luminaire, Di
     const Eigen::MatrixXd luminance =
         exact ? Eigen::MatrixXd((m[c] - Reflectance(core, c).asDiagonal() * e) / kPi)
               : Eigen::MatrixXd(m[c] / kPi);
-    vertices.basis[c] = AverageToVertices(core.mesh, luminance);
+    vertices.basis[c] = AverageToVertices(core.mesh, luminance, core.options.threads);
   }
   if (exact) vertices.direct = direct.vertices;
 

@@ -8,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <vector>
 
@@ -88,6 +89,145 @@ TEST(DenseBlas, TopEigenvectorsOfZeroAndOneByOneMatrices) {
   ASSERT_EQ(v.rows(), 1);
   ASSERT_EQ(v.cols(), 1);
   EXPECT_DOUBLE_EQ(std::abs(v(0, 0)), 1.0);
+}
+
+// trace(v^T g v) for the full symmetric g: the variance v captures.
+double Captured(const MatrixXd& full, const MatrixXd& v) { return (v.transpose() * full * v).trace(); }
+
+TEST(DenseBlas, LeadingEigenvectorsFindTheTopEigenvectorsOfLowRankData) {
+  // A degree-8 cluster: 243 dimensions, rank 40 plus noise, 32 wanted; the
+  // subspace (32 + 16 columns) holds the whole rank after one power step.
+  const Index d = 243, count = 32;
+  const MatrixXd y = LowRankData(512, d, 40, 7);
+  const MatrixXd gram = LowerGram(y, false);
+  const MatrixXd full = y.transpose() * y;
+  const MatrixXd v = LeadingEigenvectors(gram, count, 1);
+  ASSERT_EQ(v.rows(), d);
+  ASSERT_EQ(v.cols(), count);
+  EXPECT_LT((v.transpose() * v - MatrixXd::Identity(count, count)).cwiseAbs().maxCoeff(), 1e-12);
+  Eigen::SelfAdjointEigenSolver<MatrixXd> reference(full);
+  const VectorXd values = reference.eigenvalues().reverse();
+  for (Index j = 0; j < count; ++j) {
+    const VectorXd ref = reference.eigenvectors().col(d - 1 - j);
+    EXPECT_NEAR(std::abs(v.col(j).dot(ref)), 1.0, 1e-8) << "vector " << j;
+    EXPECT_LT((full * v.col(j) - values(j) * v.col(j)).norm(), 1e-8 * values(0)) << "vector " << j;
+  }
+}
+
+TEST(DenseBlas, LeadingEigenvectorsCaptureNearlyAllTheyCanOfAFlatSpectrum) {
+  // Full rank, slowly decaying spectrum (the hard case for subspace
+  // iteration): the 32 vectors capture nearly the variance of the true 32.
+  const Index d = 243, count = 32;
+  std::mt19937 rng(5);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  MatrixXd y(600, d);
+  for (Index j = 0; j < d; ++j)
+    for (Index i = 0; i < y.rows(); ++i)
+      y(i, j) = normal(rng) / std::sqrt(1.0 + 0.05 * static_cast<double>(j));
+  const MatrixXd full = y.transpose() * y;
+  Eigen::SelfAdjointEigenSolver<MatrixXd> reference(full);
+  const double best = reference.eigenvalues().tail(count).sum();
+  // One power step (what the compression uses) and two: each step captures more.
+  double previous = 0;
+  for (int steps : {1, 2}) {
+    const MatrixXd v = LeadingEigenvectors(LowerGram(y, false), count, steps);
+    EXPECT_LT((v.transpose() * v - MatrixXd::Identity(count, count)).cwiseAbs().maxCoeff(), 1e-12);
+    const double got = Captured(full, v);
+    EXPECT_LE(got, best * (1 + 1e-12)) << steps << " steps";
+    EXPECT_GT(got, 0.95 * best) << steps << " steps";
+    EXPECT_GT(got, previous) << steps << " steps";
+    previous = got;
+    std::printf("%d power steps: %.4f of the best 32 vectors' variance\n", steps, got / best);
+  }
+}
+
+TEST(DenseBlas, LeadingEigenvectorsOfZeroAndSmallMatrices) {
+  const MatrixXd zero = MatrixXd::Zero(243, 243);
+  const MatrixXd top = LeadingEigenvectors(zero, 32, 1);
+  ASSERT_EQ(top.cols(), 32);
+  ASSERT_TRUE(top.allFinite());
+  EXPECT_LT((top.transpose() * top - MatrixXd::Identity(32, 32)).cwiseAbs().maxCoeff(), 1e-12);
+  // Too small for a subspace of 32 + 16 columns: the exact route.
+  MatrixXd g(3, 3);
+  g << 4, 0, 0, 1, 3, 0, 0, 1, 2;
+  const MatrixXd full = g.selfadjointView<Eigen::Lower>();
+  const MatrixXd v = LeadingEigenvectors(g, 32, 1);
+  ASSERT_EQ(v.cols(), 3);
+  Eigen::SelfAdjointEigenSolver<MatrixXd> reference(full);
+  for (Index j = 0; j < 3; ++j) {
+    const double lambda = reference.eigenvalues()(2 - j);
+    EXPECT_LT((full * v.col(j) - lambda * v.col(j)).norm(), 1e-12) << "vector " << j;
+  }
+}
+
+// The search's error for clusters of `length` with r components, computed
+// the plain way: each cluster centred and decomposed on its own (Eigen's
+// full eigensolver), the error at every look over every receiver.
+void ReferenceError(const MatrixXd& x, const MatrixXd& k, Index length, Index r, double* max_error,
+                    double* mean_error) {
+  const Index n = x.rows(), t = k.rows(), looks = k.cols();
+  VectorXd peak = VectorXd::Zero(looks), worst = VectorXd::Zero(looks), sum = VectorXd::Zero(looks);
+  for (int c = 0; c < 3; ++c)
+    peak = peak.cwiseMax((x.middleCols(c * t, t) * k).cwiseAbs().colwise().maxCoeff().transpose());
+  for (Index s = 0; s < n; s += length) {
+    const Index m = std::min(length, n - s);
+    MatrixXd y = x.middleRows(s, m);
+    const VectorXd mean = y.colwise().mean().transpose();
+    y.rowwise() -= mean.transpose();
+    Eigen::SelfAdjointEigenSolver<MatrixXd> es(y.transpose() * y);
+    const MatrixXd v = es.eigenvectors().rightCols(r);
+    const MatrixXd err = y - (y * v) * v.transpose();
+    for (int c = 0; c < 3; ++c) {
+      const MatrixXd e = (err.middleCols(c * t, t) * k).cwiseAbs();
+      worst = worst.cwiseMax(e.colwise().maxCoeff().transpose());
+      sum += e.colwise().sum().transpose();
+    }
+  }
+  *max_error = (worst.array() / peak.array()).maxCoeff();
+  *mean_error = (sum.array() / peak.array()).mean() / (3.0 * static_cast<double>(n));
+}
+
+TEST(CompressBasis, EveryClusterLengthsErrorMatchesAPlainPca) {
+  // 4500 receivers x 25 terms: the longer cluster lengths are built from
+  // the shorter ones' moments, and each length ends in a partial cluster
+  // (the 128 one with 20 receivers, fewer than its 75 dimensions). Each
+  // receiver: a steep trend along the receivers (so the runs merged have
+  // different means) plus four components of very different weight.
+  const Index receivers = 4500, terms = 25, d = 3 * terms;
+  std::mt19937 rng(17);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  MatrixXd dirs(5, d);
+  for (Index i = 0; i < dirs.size(); ++i) dirs.data()[i] = normal(rng);
+  MatrixXd x(receivers, d);
+  const double scale[4] = {1000, 100, 10, 1};
+  for (Index i = 0; i < receivers; ++i) {
+    VectorXd row = 1e5 * (static_cast<double>(i) / receivers) * dirs.row(4).transpose();
+    for (int j = 0; j < 4; ++j) row += scale[j] * normal(rng) * dirs.row(j).transpose();
+    x.row(i) = row.transpose();
+  }
+  std::array<MatrixXd, 3> basis;
+  for (int c = 0; c < 3; ++c) basis[c] = x.middleCols(c * terms, terms);
+  std::vector<VectorXd> looks(8, VectorXd(terms));
+  MatrixXd k(terms, 8);
+  for (size_t l = 0; l < looks.size(); ++l) {
+    for (Index t = 0; t < terms; ++t) looks[l](t) = normal(rng);
+    k.col(static_cast<Index>(l)) = looks[l];
+  }
+  BakeCompressedBasis out;
+  std::vector<CompressionPoint> curve;
+  CompressBasis(basis, looks, {}, 0.01, 2, &out, &curve);
+  int checked = 0;
+  for (const CompressionPoint& p : curve) {
+    if (p.components > 6) continue;
+    double max_error = 0, mean_error = 0;
+    ReferenceError(x, k, p.cluster_size, p.components, &max_error, &mean_error);
+    EXPECT_NEAR(p.max_error, max_error, 1e-9 + 1e-7 * max_error)
+        << "length " << p.cluster_size << ", " << p.components << " components";
+    EXPECT_NEAR(p.mean_error, mean_error, 1e-9 + 1e-7 * mean_error)
+        << "length " << p.cluster_size << ", " << p.components << " components";
+    ++checked;
+  }
+  EXPECT_EQ(checked, 5 * 7);  // five lengths, 0 .. 6 components
 }
 
 TEST(CompressBasis, SameResultWithOneThreadOrTwo) {
