@@ -12,9 +12,12 @@ namespace {
 
 using radiosity_vec::Dot;
 
-// Columns per block: a block's three node arrays stay within the shared
-// cache for tens of thousands of nodes, and a luminaire's terms split into
-// several blocks so both cores get work.
+// Columns per block. A luminaire's terms split into several blocks so both
+// cores get work; at most 48 makes a degree-8 luminaire's 81 terms two
+// blocks per colour channel, six in all, which two cores share evenly (at
+// 32 they made nine, the last one running alone). A block's arrays outgrow
+// the cache at venue size either way (docs/venue.md). The split depends on
+// the terms only, never on the threads, so bakes do not either.
 constexpr Eigen::Index kMaxBlockColumns = 48;
 
 using Row = Eigen::Map<Eigen::ArrayXd>;
