@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "dense_blas.h"
 #include "parallel_for.h"
@@ -18,7 +19,7 @@ namespace {
 // monotonic), so all are searched. Each is half the one before: a cluster is
 // two of the next length (AllClusterPcas merges their moments).
 constexpr uint32_t kClusterSizes[] = {2048, 1024, 512, 256, 128};
-constexpr uint32_t kMaxSearchedComponents = 32;
+constexpr Eigen::Index kMaxSearchedComponents = 32;
 // Unquantised candidates must meet this share of the target: quantising the
 // weights and vectors adds a little error of its own.
 constexpr double kQuantisationHeadroom = 0.8;
@@ -142,26 +143,30 @@ void FitCluster(const MatrixXd& x, const MatrixXd& k, ClusterPca* p) {
   }
 }
 
-// A cluster of at least 3T receivers, from its moments.
-ClusterPca PcaOfMoments(const MatrixXd& x, const RunMoments& m, Index rmax, const MatrixXd& k) {
+// A cluster of at least 3T receivers, from its moments; its weights and
+// errors for at most `cap` components (the directions are found for
+// kMaxSearchedComponents whatever the cap, so they do not depend on it).
+ClusterPca PcaOfMoments(const MatrixXd& x, const RunMoments& m, Index cap, const MatrixXd& k) {
   ClusterPca p;
   p.start = m.start;
   p.size = m.count;
   p.mean = m.mean;
-  p.vectors = LeadingEigenvectors(m.gram, std::min({rmax, m.count, x.cols()}), kPowerSteps);
+  const Index rc = std::min({cap, m.count, x.cols()});
+  p.vectors = LeadingEigenvectors(m.gram, rc, kPowerSteps);
   FitCluster(x, k, &p);
   return p;
 }
 
-// A cluster of fewer receivers than 3T: its rows' Gram matrix is the smaller.
-ClusterPca PcaOfFewRows(const MatrixXd& x, Index start, Index size, Index rmax, const MatrixXd& k) {
+// A cluster of fewer receivers than 3T: its rows' Gram matrix is the
+// smaller. `cap` as PcaOfMoments.
+ClusterPca PcaOfFewRows(const MatrixXd& x, Index start, Index size, Index cap, const MatrixXd& k) {
   ClusterPca p;
   p.start = start;
   p.size = size;
   MatrixXd y = x.middleRows(start, size);
   p.mean = y.colwise().mean().transpose();
   y.rowwise() -= p.mean.transpose();
-  const Index d = y.cols(), rc = std::min({rmax, size, d});
+  const Index d = y.cols(), rc = std::min({cap, size, d});
   // y^T u is along the principal direction of u, scaled by its singular
   // value; made orthonormal in order (Householder QR), since beyond the
   // cluster's rank those values are rounding noise and y^T u points anywhere.
@@ -174,11 +179,13 @@ ClusterPca PcaOfFewRows(const MatrixXd& x, Index start, Index size, Index rmax, 
 }
 
 // Every cluster of every length in `sizes` (each a power-of-two fraction of
-// kClusterSizes[0]), into pcas[size index][cluster]. Tasks take one run of
-// the longest length: its shortest clusters of at least 3T receivers get
-// their moments from the receivers, the longer ones by merging pairs.
+// kClusterSizes[0]) with at most caps[i] components, into
+// pcas[size index][cluster]. Tasks take one run of the longest length: its
+// shortest clusters of at least 3T receivers get their moments from the
+// receivers, the longer ones by merging pairs.
 void AllClusterPcas(const MatrixXd& x, const MatrixXd& k, const std::vector<uint32_t>& sizes,
-                    int threads, std::vector<std::vector<ClusterPca>>* pcas) {
+                    const std::vector<Index>& caps, int threads,
+                    std::vector<std::vector<ClusterPca>>* pcas) {
   const Index receivers = x.rows(), d = x.cols();
   const Index longest = kClusterSizes[0];
   Index base = 0;  // the shortest length of at least d receivers (0: none is)
@@ -187,11 +194,15 @@ void AllClusterPcas(const MatrixXd& x, const MatrixXd& k, const std::vector<uint
   pcas->assign(sizes.size(), {});
   for (size_t i = 0; i < sizes.size(); ++i)
     (*pcas)[i].resize(static_cast<size_t>((receivers + sizes[i] - 1) / sizes[i]));
-  const auto slot = [&](Index length, Index start) -> ClusterPca* {
-    for (size_t i = 0; i < sizes.size(); ++i)
-      if (sizes[i] == length) return &(*pcas)[i][static_cast<size_t>(start / length)];
-    return nullptr;  // a length that gives the same clusters as a longer one
+  const auto index_of = [&](Index length) {
+    return static_cast<size_t>(std::find(sizes.begin(), sizes.end(), length) - sizes.begin());
   };
+  // nullptr: a length not asked for (or that gives the same clusters as a longer one).
+  const auto slot = [&](Index length, Index start) -> ClusterPca* {
+    const size_t i = index_of(length);
+    return i < sizes.size() ? &(*pcas)[i][static_cast<size_t>(start / length)] : nullptr;
+  };
+  const auto cap = [&](Index length) { return caps[index_of(length)]; };
   const size_t runs = static_cast<size_t>((receivers + longest - 1) / longest);
   ParallelFor(runs, threads, [&](size_t run, int) {
     const Index begin = static_cast<Index>(run) * longest;
@@ -200,7 +211,7 @@ void AllClusterPcas(const MatrixXd& x, const MatrixXd& k, const std::vector<uint
       const Index length = n;
       if (base > 0 && length >= base) continue;
       for (Index s = begin; s < end; s += length)
-        *slot(length, s) = PcaOfFewRows(x, s, std::min(length, end - s), kMaxSearchedComponents, k);
+        *slot(length, s) = PcaOfFewRows(x, s, std::min(length, end - s), cap(length), k);
     }
     if (base == 0) return;
     std::vector<RunMoments> level;
@@ -208,8 +219,8 @@ void AllClusterPcas(const MatrixXd& x, const MatrixXd& k, const std::vector<uint
     for (Index length = base;; length *= 2) {
       for (const RunMoments& m : level) {
         if (ClusterPca* out = slot(length, m.start)) {
-          *out = m.count >= d ? PcaOfMoments(x, m, kMaxSearchedComponents, k)
-                              : PcaOfFewRows(x, m.start, m.count, kMaxSearchedComponents, k);
+          *out = m.count >= d ? PcaOfMoments(x, m, cap(length), k)
+                              : PcaOfFewRows(x, m.start, m.count, cap(length), k);
         }
       }
       if (length >= longest) break;
@@ -352,10 +363,10 @@ CompressionStats CompressBasis(const std::array<MatrixXd, 3>& basis, const std::
       continue;
     sizes.push_back(n);
   }
-  std::vector<std::vector<ClusterPca>> by_size;
-  AllClusterPcas(x, k, sizes, threads, &by_size);
+  constexpr size_t kTries = 4;  // passing candidates quantised and measured, smallest first
+  std::vector<std::vector<ClusterPca>> by_size(sizes.size());
   std::vector<Candidate> passing;
-  for (size_t si = 0; si < sizes.size(); ++si) {
+  const auto weigh = [&](size_t si) {
     const uint32_t n = sizes[si];
     const std::vector<ClusterPca>& pcas = by_size[si];
     const Index clusters = static_cast<Index>(pcas.size());
@@ -390,10 +401,45 @@ CompressionStats CompressBasis(const std::array<MatrixXd, 3>& basis, const std::
         passing.push_back(cand);
       }
     }
+  };
+  // The longest length first, with every component count. Its passing
+  // candidates bound the bytes the search can end with, so the other lengths
+  // are fitted only for the component counts that stay within that bound:
+  // the same choice for less work. With a curve wanted, every count.
+  {
+    std::vector<std::vector<ClusterPca>> longest;
+    AllClusterPcas(x, k, {sizes[0]}, {kMaxSearchedComponents}, threads, &longest);
+    by_size[0] = std::move(longest[0]);
+    weigh(0);
   }
-  std::sort(passing.begin(), passing.end(),
-            [](const Candidate& a, const Candidate& b) { return a.bytes < b.bytes; });
-  constexpr size_t kTries = 4;
+  if (sizes.size() > 1) {
+    uint64_t bound = std::numeric_limits<uint64_t>::max();
+    if (!curve && passing.size() >= kTries) {
+      std::vector<uint64_t> bytes;
+      for (const Candidate& c : passing) bytes.push_back(c.bytes);
+      std::nth_element(bytes.begin(), bytes.begin() + (kTries - 1), bytes.end());
+      bound = bytes[kTries - 1];
+    }
+    const std::vector<uint32_t> rest(sizes.begin() + 1, sizes.end());
+    std::vector<Index> caps;
+    for (uint32_t n : rest) {
+      const uint64_t clusters = static_cast<uint64_t>((receivers + n - 1) / n);
+      Index cap = 0;
+      while (cap < kMaxSearchedComponents &&
+             CompressedMemory(static_cast<uint64_t>(terms), static_cast<uint64_t>(receivers),
+                              clusters, static_cast<uint64_t>(cap + 1)) <= bound)
+        ++cap;
+      caps.push_back(cap);
+    }
+    std::vector<std::vector<ClusterPca>> others;
+    AllClusterPcas(x, k, rest, caps, threads, &others);
+    for (size_t i = 0; i < rest.size(); ++i) {
+      by_size[i + 1] = std::move(others[i]);
+      weigh(i + 1);
+    }
+  }
+  std::stable_sort(passing.begin(), passing.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.bytes < b.bytes; });
   for (size_t i = 0; i < passing.size() && i < kTries; ++i) {
     const Candidate& cand = passing[i];
     const size_t s = static_cast<size_t>(std::find(sizes.begin(), sizes.end(), cand.cluster_size) - sizes.begin());

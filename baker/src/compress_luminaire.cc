@@ -43,7 +43,8 @@ void CompressLuminaireBases(const Luminaire& lum, size_t index, int degree,
     std::vector<CompressionPoint> curve;
     BakeCompressedBasis cpca;
     const CompressionStats st =
-        CompressBasis(b, coef, direct, options.compress_error, options.threads, &cpca, &curve);
+        CompressBasis(b, coef, direct, options.compress_error, options.threads, &cpca,
+                      options.compress_curve ? &curve : nullptr);
     for (CompressionPoint& p : curve) {
       p.luminaire = index;
       p.set = s;

@@ -217,6 +217,7 @@ int Run(const Args& args, const relight::baker::DistributedSession& mpi) {
                                       mpi.local_ranks());
   }
   options.compress_error = args.no_compress ? 0 : args.compress_error_percent / 100;
+  options.compress_curve = !args.compress_curve_path.empty();
   if (args.lid_error_percent > 0) {
     const auto mode = options.direct_mode.value_or(relight::baker::DirectModeKind::kExact);
     for (const auto& d : relight::baker::ApplyLidErrorTarget(&scene, args.lid_error_percent / 100, mode)) {
@@ -382,7 +383,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--compress-curve", args.compress_curve_path,
                  "write every compression candidate weighed (cluster length, components, error, "
-                 "bytes) to this CSV file");
+                 "bytes) to this CSV file; the search then weighs every component count of every "
+                 "cluster length, which takes longer and can pick a form a few bytes apart");
   app.add_option("--recompress", args.recompress_path,
                  "compress the bases of this uncompressed bake of the scene (written by "
                  "--no-compress) instead of baking: no radiosity solve");

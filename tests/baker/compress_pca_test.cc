@@ -230,6 +230,40 @@ TEST(CompressBasis, EveryClusterLengthsErrorMatchesAPlainPca) {
   EXPECT_EQ(checked, 5 * 7);  // five lengths, 0 .. 6 components
 }
 
+TEST(CompressBasis, NarrowedSearchPicksWhatTheFullSearchPicks) {
+  // Without a curve the shorter cluster lengths are fitted only for the
+  // component counts that can still beat the longest length's candidates;
+  // with one, for every count. Both must choose the same form.
+  const Index receivers = 6000, terms = 25;
+  const MatrixXd all = LowRankData(receivers, 3 * terms, 12, 23);
+  std::array<MatrixXd, 3> basis;
+  for (int c = 0; c < 3; ++c) basis[c] = all.middleCols(c * terms, terms);
+  std::mt19937 rng(9);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<VectorXd> looks(8, VectorXd(terms));
+  for (VectorXd& l : looks)
+    for (Index t = 0; t < terms; ++t) l(t) = normal(rng);
+  BakeCompressedBasis narrowed, full;
+  std::vector<CompressionPoint> curve;
+  const CompressionStats a = CompressBasis(basis, looks, {}, 0.002, 2, &narrowed);
+  const CompressionStats b = CompressBasis(basis, looks, {}, 0.002, 2, &full, &curve);
+  ASSERT_TRUE(a.compressed);
+  ASSERT_TRUE(b.compressed);
+  EXPECT_EQ(a.clusters, b.clusters);
+  EXPECT_EQ(a.components, b.components);
+  EXPECT_EQ(a.bytes, b.bytes);
+  EXPECT_NEAR(a.max_error, b.max_error, 1e-6 * b.max_error);
+  EXPECT_LE(a.max_error, 0.002);
+  // The full search weighed every count up to 32 for every length.
+  size_t longest = 0, shortest = 0;
+  for (const CompressionPoint& p : curve) {
+    longest += p.cluster_size == 2048;
+    shortest += p.cluster_size == 128;
+  }
+  EXPECT_EQ(longest, 33u);
+  EXPECT_EQ(shortest, 33u);
+}
+
 TEST(CompressBasis, SameResultWithOneThreadOrTwo) {
   // Three channels of 1500 receivers x 25 terms (degree 4).
   const Index receivers = 1500, terms = 25;

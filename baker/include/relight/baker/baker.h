@@ -79,6 +79,12 @@ struct BakeOptions {
   // error allowed, a fraction of the peak of each luminaire's own SH light
   // at random looks; 0 stores the bases uncompressed.
   double compress_error = 0;
+  // Keep every candidate the compression weighs in BakeReport::compress_curve.
+  // The search then fits every component count of every cluster length
+  // instead of only those that could still give the smallest form (its
+  // principal directions differ in rounding, so the form chosen can differ
+  // by a few bytes).
+  bool compress_curve = false;
 };
 
 // One rate-error point of the basis compression: a cluster length and
