@@ -83,14 +83,19 @@ struct RunMoments {
   MatrixXd gram;
 };
 
+// Rows [start, start + count) of x less their mean (returned in `mean`).
+MatrixXd CentredRows(const MatrixXd& x, Index start, Index count, VectorXd* mean) {
+  MatrixXd y = x.middleRows(start, count);
+  *mean = y.colwise().mean().transpose();
+  y.rowwise() -= mean->transpose();
+  return y;
+}
+
 RunMoments Moments(const MatrixXd& x, Index start, Index count) {
   RunMoments m;
   m.start = start;
   m.count = count;
-  MatrixXd y = x.middleRows(start, count);
-  m.mean = y.colwise().mean().transpose();
-  y.rowwise() -= m.mean.transpose();
-  m.gram = LowerGram(y, false);
+  m.gram = LowerGram(CentredRows(x, start, count, &m.mean), false);
   return m;
 }
 
@@ -109,9 +114,9 @@ RunMoments Merge(const RunMoments& a, const RunMoments& b) {
   return m;
 }
 
-// Subspace iteration's power steps for the principal directions: one
-// gives the same compressed sizes as exact eigenvectors on the venue's
-// bases (docs/venue.md) at a third of the cost.
+// Subspace iteration's power steps for the principal directions: one gives
+// the venue's bases the same size in memory as exact eigenvectors did, for
+// less work than two (docs/venue.md).
 constexpr int kPowerSteps = 1;
 
 // Weights and the errors at the looks of a cluster whose mean and
@@ -143,9 +148,10 @@ void FitCluster(const MatrixXd& x, const MatrixXd& k, ClusterPca* p) {
   }
 }
 
-// A cluster of at least 3T receivers, from its moments; its weights and
-// errors for at most `cap` components (the directions are found for
-// kMaxSearchedComponents whatever the cap, so they do not depend on it).
+// A cluster of at least 3T receivers, from its moments: its directions,
+// weights and errors for at most `cap` components (the subspace iteration
+// then works on cap + 16 columns, so the directions' rounding depends on
+// the cap).
 ClusterPca PcaOfMoments(const MatrixXd& x, const RunMoments& m, Index cap, const MatrixXd& k) {
   ClusterPca p;
   p.start = m.start;
@@ -163,9 +169,7 @@ ClusterPca PcaOfFewRows(const MatrixXd& x, Index start, Index size, Index cap, c
   ClusterPca p;
   p.start = start;
   p.size = size;
-  MatrixXd y = x.middleRows(start, size);
-  p.mean = y.colwise().mean().transpose();
-  y.rowwise() -= p.mean.transpose();
+  const MatrixXd y = CentredRows(x, start, size, &p.mean);
   const Index d = y.cols(), rc = std::min({cap, size, d});
   // y^T u is along the principal direction of u, scaled by its singular
   // value; made orthonormal in order (Householder QR), since beyond the
@@ -405,7 +409,8 @@ CompressionStats CompressBasis(const std::array<MatrixXd, 3>& basis, const std::
   // The longest length first, with every component count. Its passing
   // candidates bound the bytes the search can end with, so the other lengths
   // are fitted only for the component counts that stay within that bound:
-  // the same choice for less work. With a curve wanted, every count.
+  // the same choice, up to rounding, for less work. With a curve wanted,
+  // every count.
   {
     std::vector<std::vector<ClusterPca>> longest;
     AllClusterPcas(x, k, {sizes[0]}, {kMaxSearchedComponents}, threads, &longest);

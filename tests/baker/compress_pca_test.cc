@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "compress_basis.h"
@@ -89,6 +90,23 @@ TEST(DenseBlas, TopEigenvectorsOfZeroAndOneByOneMatrices) {
   ASSERT_EQ(v.rows(), 1);
   ASSERT_EQ(v.cols(), 1);
   EXPECT_DOUBLE_EQ(std::abs(v(0, 0)), 1.0);
+}
+
+// A basis of three channels (receivers x terms each, LowRankData of the
+// given rank) and 8 random looks at it.
+std::pair<std::array<MatrixXd, 3>, std::vector<VectorXd>> RandomBasis(Index receivers, Index terms,
+                                                                      Index rank,
+                                                                      uint32_t data_seed,
+                                                                      uint32_t look_seed) {
+  const MatrixXd all = LowRankData(receivers, 3 * terms, rank, data_seed);
+  std::array<MatrixXd, 3> basis;
+  for (int c = 0; c < 3; ++c) basis[c] = all.middleCols(c * terms, terms);
+  std::mt19937 rng(look_seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<VectorXd> looks(8, VectorXd(terms));
+  for (VectorXd& l : looks)
+    for (Index t = 0; t < terms; ++t) l(t) = normal(rng);
+  return {basis, looks};
 }
 
 // trace(v^T g v) for the full symmetric g: the variance v captures.
@@ -234,15 +252,7 @@ TEST(CompressBasis, NarrowedSearchPicksWhatTheFullSearchPicks) {
   // Without a curve the shorter cluster lengths are fitted only for the
   // component counts that can still beat the longest length's candidates;
   // with one, for every count. Both must choose the same form.
-  const Index receivers = 6000, terms = 25;
-  const MatrixXd all = LowRankData(receivers, 3 * terms, 12, 23);
-  std::array<MatrixXd, 3> basis;
-  for (int c = 0; c < 3; ++c) basis[c] = all.middleCols(c * terms, terms);
-  std::mt19937 rng(9);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  std::vector<VectorXd> looks(8, VectorXd(terms));
-  for (VectorXd& l : looks)
-    for (Index t = 0; t < terms; ++t) l(t) = normal(rng);
+  const auto [basis, looks] = RandomBasis(6000, 25, 12, 23, 9);
   BakeCompressedBasis narrowed, full;
   std::vector<CompressionPoint> curve;
   const CompressionStats a = CompressBasis(basis, looks, {}, 0.002, 2, &narrowed);
@@ -266,15 +276,7 @@ TEST(CompressBasis, NarrowedSearchPicksWhatTheFullSearchPicks) {
 
 TEST(CompressBasis, SameResultWithOneThreadOrTwo) {
   // Three channels of 1500 receivers x 25 terms (degree 4).
-  const Index receivers = 1500, terms = 25;
-  const MatrixXd all = LowRankData(receivers, 3 * terms, 6, 11);
-  std::array<MatrixXd, 3> basis;
-  for (int c = 0; c < 3; ++c) basis[c] = all.middleCols(c * terms, terms);
-  std::mt19937 rng(3);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  std::vector<VectorXd> looks(8, VectorXd(terms));
-  for (VectorXd& l : looks)
-    for (Index t = 0; t < terms; ++t) l(t) = normal(rng);
+  const auto [basis, looks] = RandomBasis(1500, 25, 6, 11, 3);
   BakeCompressedBasis one, two;
   const CompressionStats a = CompressBasis(basis, looks, {}, 0.01, 1, &one);
   const CompressionStats b = CompressBasis(basis, looks, {}, 0.01, 2, &two);
