@@ -93,6 +93,7 @@ inline relight::BakeCompressedBasis MakeCompressed(uint32_t terms, uint32_t rece
   std::uniform_int_distribution<int> w(-relight::kCompressedWeightOne, relight::kCompressedWeightOne);
   c.weights.resize(size_t{receivers} * r);
   for (int16_t& q : c.weights) q = static_cast<int16_t>(w(rng));
+  c.weight_order = relight::CompressedWeightOrder::kTiles16;  // random values: read as the engine's order
   return c;
 }
 

@@ -17,6 +17,7 @@
 #include "compressed_recombine.h"
 #include "compressed_recombine_avx2.h"
 #include "compressed_recombine_vnni.h"
+#include "compressed_tiles.h"
 #include "recombine_avx2.h"
 #include "recombine_dispatch.h"
 #include "relight/base/fixed_ops.h"
@@ -83,7 +84,10 @@ TEST(CompressedClusterTest, ScalarIsExactAndEveryVectorPathBitIdenticalOnEveryTa
         ClusterMultipliers m{};
         Fill(&rng, n, r, extreme, &w, &m);
         const bool vector_path = m.shift[0] >= 0 && m.shift[1] >= 0 && m.shift[2] >= 0;
-        const std::vector<int32_t> want = Reference(w, n, r, m);
+        const std::vector<int32_t> want = Reference(w, n, r, m);  // component-major, as in the file
+        std::vector<int16_t> tiled(w.size());
+        TileClusterWeights(w.data(), n, r, tiled.data());
+        w = tiled;  // what every path reads (compressed_tiles.h)
         std::vector<int32_t> scalar(size_t{n} * 3, 0x5A5A5A5A);
         CompressedClusterScalarQ12(w.data(), n, r, m, scalar.data());
         EXPECT_EQ(scalar, want);
@@ -199,6 +203,47 @@ TEST(CompressedClusterTest, ShiftIsTheLargestThatFitsExactly) {
   }
 }
 
+// The tiled order (compressed_tiles.h) is a permutation of each cluster's
+// n x r weights, has the layout the vector bodies load (a full tile's pair p
+// of receiver q at 32 p + 2 q, an odd last component at 32 (r / 2) + q), and
+// TileCompressedWeights reorders every cluster in place, once.
+TEST(CompressedTilesTest, EveryClusterIsPermutedInPlaceIntoTheKernelsLayout) {
+  for (uint32_t r : {0u, 1u, 2u, 5u, 16u, 17u}) {
+    for (uint32_t n : {1u, 15u, 16u, 17u, 33u, 64u}) {
+      SCOPED_TRACE(testing::Message() << "r " << r << " n " << n);
+      std::vector<int> seen(size_t{n} * r, 0);
+      for (uint32_t i = 0; i < n; ++i) {
+        for (uint32_t j = 0; j < r; ++j) {
+          const size_t at = TiledWeightOffset(n, r, i, j);
+          ASSERT_LT(at, seen.size());
+          ++seen[at];
+          if (i - i % 16 + 16 > n) continue;  // the short last tile: checked by the kernels' test
+          const size_t tile = size_t{i - i % 16} * r, q = i % 16;
+          EXPECT_EQ(at, j < (r & ~1u) ? tile + 32 * (j / 2) + 2 * q + j % 2 : tile + 32 * (r / 2) + q);
+        }
+      }
+      EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int c) { return c == 1; }));
+    }
+  }
+  BakeCompressedBasis cpca;
+  cpca.components = 3;
+  cpca.cluster_start = {0, 32, 49, 50};
+  for (int i = 0; i < 50 * 3; ++i) cpca.weights.push_back(static_cast<int16_t>(i - 75));
+  const std::vector<int16_t> file = cpca.weights;
+  TileCompressedWeights(&cpca);
+  EXPECT_EQ(cpca.weight_order, CompressedWeightOrder::kTiles16);
+  for (uint32_t c = 0; c < 3; ++c) {
+    const uint32_t start = cpca.cluster_start[c], n = cpca.cluster_start[c + 1] - start;
+    std::vector<int16_t> want(size_t{n} * 3);
+    TileClusterWeights(file.data() + size_t{start} * 3, n, 3, want.data());
+    EXPECT_TRUE(std::equal(want.begin(), want.end(), cpca.weights.begin() + start * 3)) << "cluster " << c;
+  }
+  const std::vector<int16_t> once = cpca.weights;
+  TileCompressedWeights(&cpca);  // already tiled: unchanged
+  EXPECT_EQ(cpca.weights, once);
+  EXPECT_NE(once, file);
+}
+
 TEST(CompressedRecombineTest, MatchesTheFloat64ExpansionOfTheCompressedBasis) {
   const int degree = 2, terms = ShTermCount(degree);
   const uint32_t r = 5, counts[] = {20, 37, 16};
@@ -219,7 +264,9 @@ TEST(CompressedRecombineTest, MatchesTheFloat64ExpansionOfTheCompressedBasis) {
   std::vector<int32_t> k(3 * static_cast<size_t>(terms)), projection(CompressedProjectionValues(cpca));
   std::vector<int64_t> scratch(64);
   std::vector<int32_t> out(size_t{receivers} * 3);
-  RecombineCompressedQ12(cpca, terms, coef.data(), k.data(), scratch.data(), 64, projection.data(), out.data());
+  BakeCompressedBasis tiled = cpca;  // the engine's order; cpca keeps the file's for the reference
+  TileCompressedWeights(&tiled);
+  RecombineCompressedQ12(tiled, terms, coef.data(), k.data(), scratch.data(), 64, projection.data(), out.data());
 
   const auto value = [&](uint32_t vec, int t, int ch) {
     const QuantScale s = cpca.vector_scale[static_cast<size_t>(t * 3 + ch)];

@@ -9,12 +9,15 @@
 #include "bake_sections.h"
 #include "relight/bake/bake_check.h"
 #include "relight/base/sh_index.h"
+#include "relight/base/status.h"
 
 using ull = unsigned long long;
 
 namespace relight::bake_format {
 
 void EncodeCompressedBasis(const BakeCompressedBasis& cpca, std::vector<uint8_t>* out) {
+  // The engine's tiled copy is a run-time form only (bake.h).
+  RELIGHT_CHECK(cpca.weight_order == CompressedWeightOrder::kComponentMajor);
   ByteWriter w(out);
   w.Put(cpca.cluster_count());
   w.Put(cpca.components);

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "compressed_recombine_avx2.h"
+#include "compressed_tiles.h"
 #include "compressed_recombine_vnni.h"
 #include "recombine.h"
 #include "recombine_dispatch.h"
@@ -90,11 +91,20 @@ void CompressedClusterScalarQ12(const int16_t* w, uint32_t n, uint32_t component
 
 void CompressedClusterTailQ12(const int16_t* w, uint32_t from, uint32_t n, uint32_t components,
                               const ClusterMultipliers& m, int32_t* out) {
-  for (int ch = 0; ch < 3; ++ch) {
-    const int16_t* k = m.k + ch * components;
-    for (uint32_t i = from; i < n; ++i) {
+  const uint32_t pairs = components / 2;
+  for (uint32_t i = from; i < n; ++i) {
+    // Receiver i's tile (compressed_tiles.h): `width` receivers, i its q-th.
+    const uint32_t first = i - i % kWeightTile, q = i % kWeightTile;
+    const uint32_t width = n - first < kWeightTile ? n - first : kWeightTile;
+    const int16_t* tile = w + size_t{first} * components;
+    for (int ch = 0; ch < 3; ++ch) {
+      const int16_t* k = m.k + ch * components;
       int32_t acc = 0;  // exact: |acc| < 2^30 (see the header)
-      for (uint32_t j = 0; j < components; ++j) acc += int32_t{w[size_t{j} * n + i]} * k[j];
+      for (uint32_t p = 0; p < pairs; ++p) {
+        const int16_t* pair = tile + size_t{p} * 2 * width + 2 * q;
+        acc += int32_t{pair[0]} * k[2 * p] + int32_t{pair[1]} * k[2 * p + 1];
+      }
+      if (components % 2 != 0) acc += int32_t{tile[size_t{pairs} * 2 * width + q]} * k[components - 1];
       out[size_t{i} * 3 + ch] = Finish(m.mean[ch], acc, m.shift[ch]);
     }
   }
@@ -119,7 +129,7 @@ void CompressedClusterQ12(const int16_t* w, uint32_t n, uint32_t components,
       }
     }
   }
-  // The tail: same integers on the scalar path, weights still at stride n.
+  // The tail (the cluster's last, short tile): same integers on the scalar path.
   if (done < n) CompressedClusterTailQ12(w, done, n, components, m, out);
 }
 
@@ -131,7 +141,7 @@ uint32_t RecombineCompressedQ12(const BakeCompressedBasis& cpca, int terms, cons
                                 int32_t* k_terms, int64_t* scratch, uint32_t scratch_len,
                                 int32_t* projection, int32_t* out) {
   const uint32_t r = cpca.components;
-  RELIGHT_CHECK(r <= kMaxCompressedComponents);
+  RELIGHT_CHECK(r <= kMaxCompressedComponents && cpca.weight_order == CompressedWeightOrder::kTiles16);
   const uint32_t vectors = cpca.cluster_count() * (r + 1);
   const int shift = ChannelMultipliersQ12(coef_q16, terms, cpca.vector_scale.data(), k_terms);
   const uint32_t used = RecombineQ12(cpca.vectors.data(), static_cast<uint32_t>(terms), vectors,

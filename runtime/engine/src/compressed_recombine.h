@@ -40,8 +40,9 @@ int32_t CompressedMultiplierLimit(uint32_t components);
 //   all-in-SH basis; its receivers then take the scalar path.
 void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, ClusterMultipliers* m);
 
-// Receivers [0, n) of one cluster, weights component-major (w[j * n + i]):
-//   out[i * 3 + ch] = mean[ch] + ((sum_j w[j n + i] K[ch r + j] + half) >> shift[ch])
+// Receivers [0, n) of one cluster, weights in tiles (compressed_tiles.h;
+// w_ij below is w[TiledWeightOffset(n, r, i, j)]):
+//   out[i * 3 + ch] = mean[ch] + ((sum_j w_ij K[ch r + j] + half) >> shift[ch])
 // (for shift < 0: mean + sum x 2^-shift in int64, saturated to int32).
 // Scaling and overflow:
 //   w      int16 in [-kCompressedWeightOne, kCompressedWeightOne] (< 2^14; the bake checks it)
@@ -55,7 +56,7 @@ void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, Clust
 // (compressed_recombine_vnni.h) paths compute these same integers: bit-identical.
 void CompressedClusterScalarQ12(const int16_t* w, uint32_t n, uint32_t components,
                                 const ClusterMultipliers& m, int32_t* out);
-// Receivers [from, n) of the same cluster (n and the weights' stride as above).
+// Receivers [from, n) of the same cluster (n and the tiles as above).
 void CompressedClusterTailQ12(const int16_t* w, uint32_t from, uint32_t n, uint32_t components,
                               const ClusterMultipliers& m, int32_t* out);
 // Same, on the active vector path (recombine_dispatch.h: AVX-512 VNNI,
@@ -70,7 +71,8 @@ uint64_t CompressedProjectionValues(const BakeCompressedBasis& cpca);
 // coefficients (weights.h TermCoefficientsQ16), `terms` of them; k_terms
 // (3 x terms), scratch (>= 3 int64) and projection
 // (CompressedProjectionValues) caller-owned; out: 3 per receiver, LightQ12.
-// Returns the terms the projection accumulated.
+// The weights must be tiled (TileCompressedWeights: the engine does it at
+// Open). Returns the terms the projection accumulated.
 uint32_t RecombineCompressedQ12(const BakeCompressedBasis& cpca, int terms, const int64_t* coef_q16,
                                 int32_t* k_terms, int64_t* scratch, uint32_t scratch_len,
                                 int32_t* projection, int32_t* out);

@@ -16,15 +16,15 @@ __attribute__((target("avx2"))) void CompressedClusterAvx2Q12(const int16_t* w, 
                                                               uint32_t components,
                                                               const ClusterMultipliers& m,
                                                               int32_t* out) {
-  const uint32_t pairs = (components + 1) / 2;
-  __m256i k[3][kMaxCompressedComponents / 2];
+  const uint32_t pairs = components / 2;
+  const bool odd = components % 2 != 0;
+  __m256i k[3][kMaxCompressedComponents / 2 + 1];
   for (int ch = 0; ch < 3; ++ch) {
     for (uint32_t p = 0; p < pairs; ++p) {
-      const uint32_t j = 2 * p;
-      // An odd count pairs the last component with a zero multiplier.
-      const int16_t kb = j + 1 < components ? m.k[ch * components + j + 1] : int16_t{0};
-      k[ch][p] = _mm256_set1_epi32(PackPair(m.k[ch * components + j], kb));
+      k[ch][p] = _mm256_set1_epi32(PackPair(m.k[ch * components + 2 * p], m.k[ch * components + 2 * p + 1]));
     }
+    // An odd count's last component: its weights zero-extended to (w, 0) pairs.
+    if (odd) k[ch][pairs] = _mm256_set1_epi32(PackPair(m.k[ch * components + components - 1], 0));
   }
   __m256i half[3], mean[3];
   __m128i shift[3];
@@ -34,29 +34,33 @@ __attribute__((target("avx2"))) void CompressedClusterAvx2Q12(const int16_t* w, 
     mean[ch] = _mm256_set1_epi32(m.mean[ch]);
     shift[ch] = _mm_cvtsi32_si128(s);
   }
-  const uint32_t blocks = n / 16;
-  for (uint32_t blk = 0; blk < blocks; ++blk) {
-    const uint32_t i0 = 16 * blk;
-    __m256i lo[3], hi[3];  // receivers i0 + {0..3 | 8..11}, i0 + {4..7 | 12..15}
+  const uint32_t tiles = n / 16;  // full tiles (compressed_tiles.h): 16 receivers x r weights
+  for (uint32_t b = 0; b < tiles; ++b) {
+    const uint32_t i0 = 16 * b;
+    const int16_t* tile = w + size_t{i0} * components;
+    __m256i lo[3], hi[3];  // receivers i0 + 0..7, i0 + 8..15
     for (int ch = 0; ch < 3; ++ch) lo[ch] = hi[ch] = _mm256_setzero_si256();
     for (uint32_t p = 0; p < pairs; ++p) {
-      const uint32_t j = 2 * p;
-      const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + size_t{j} * n + i0));
-      const __m256i b = j + 1 < components
-                            ? _mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + size_t{j + 1} * n + i0))
-                            : _mm256_setzero_si256();
-      const __m256i ul = _mm256_unpacklo_epi16(a, b), uh = _mm256_unpackhi_epi16(a, b);
+      const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(tile + 32 * p));
+      const __m256i c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(tile + 32 * p + 16));
       for (int ch = 0; ch < 3; ++ch) {
-        lo[ch] = _mm256_add_epi32(lo[ch], _mm256_madd_epi16(ul, k[ch][p]));
-        hi[ch] = _mm256_add_epi32(hi[ch], _mm256_madd_epi16(uh, k[ch][p]));
+        lo[ch] = _mm256_add_epi32(lo[ch], _mm256_madd_epi16(a, k[ch][p]));
+        hi[ch] = _mm256_add_epi32(hi[ch], _mm256_madd_epi16(c, k[ch][p]));
+      }
+    }
+    if (odd) {
+      const int16_t* last = tile + 32 * pairs;
+      const __m256i a = _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(last)));
+      const __m256i c = _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(last + 8)));
+      for (int ch = 0; ch < 3; ++ch) {
+        lo[ch] = _mm256_add_epi32(lo[ch], _mm256_madd_epi16(a, k[ch][pairs]));
+        hi[ch] = _mm256_add_epi32(hi[ch], _mm256_madd_epi16(c, k[ch][pairs]));
       }
     }
     __m256i first[3], second[3];  // receivers i0 + 0..7, i0 + 8..15
     for (int ch = 0; ch < 3; ++ch) {
-      const __m256i l = _mm256_add_epi32(mean[ch], _mm256_sra_epi32(_mm256_add_epi32(lo[ch], half[ch]), shift[ch]));
-      const __m256i h = _mm256_add_epi32(mean[ch], _mm256_sra_epi32(_mm256_add_epi32(hi[ch], half[ch]), shift[ch]));
-      first[ch] = _mm256_permute2x128_si256(l, h, 0x20);
-      second[ch] = _mm256_permute2x128_si256(l, h, 0x31);
+      first[ch] = _mm256_add_epi32(mean[ch], _mm256_sra_epi32(_mm256_add_epi32(lo[ch], half[ch]), shift[ch]));
+      second[ch] = _mm256_add_epi32(mean[ch], _mm256_sra_epi32(_mm256_add_epi32(hi[ch], half[ch]), shift[ch]));
     }
     StoreInterleaved(first[0], first[1], first[2], out + size_t{i0} * 3);
     StoreInterleaved(second[0], second[1], second[2], out + size_t{i0} * 3 + 24);

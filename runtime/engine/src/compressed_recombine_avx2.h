@@ -12,9 +12,10 @@ namespace relight {
 // Receivers [0, n - n % 16) of the cluster (the caller does the tail on the
 // scalar path); same arguments and results as CompressedClusterScalarQ12,
 // for shifts >= 0 only (the caller checks).
-// Per 16 receivers and component pair: two loads, two unpacks into int16
-// pairs, and per channel two _mm256_madd_epi16 into exact int32 sums (see
-// the scaling comment there); then shift, mean, and a 3-way interleave.
+// Per 16-receiver tile (compressed_tiles.h) and component pair: two loads
+// that are already the int16 pairs of receivers 0..7 and 8..15, and per
+// channel two _mm256_madd_epi16 into exact int32 sums (see the scaling
+// comment there); then shift, mean, and a 3-way interleave.
 void CompressedClusterAvx2Q12(const int16_t* w, uint32_t n, uint32_t components,
                               const ClusterMultipliers& m, int32_t* out);
 

@@ -30,16 +30,7 @@ struct Indices {
   // R and G (rg[v]), then B into that (b[v]).
   int32_t rg[3][16];
   int32_t b[3][16];
-  // vpermt2w: weights of components j (0..31) and j + 1 (32..63) paired per
-  // receiver, in receiver order: pairs[h] for receivers 16h .. 16h + 15.
-  int16_t pairs[2][32];
-  constexpr Indices() : rg(), b(), pairs() {
-    for (int h = 0; h < 2; ++h) {
-      for (int q = 0; q < 16; ++q) {
-        pairs[h][2 * q] = static_cast<int16_t>(16 * h + q);
-        pairs[h][2 * q + 1] = static_cast<int16_t>(32 + 16 * h + q);
-      }
-    }
+  constexpr Indices() : rg(), b() {
     for (int v = 0; v < 3; ++v) {
       for (int e = 0; e < 16; ++e) {
         const int g = 16 * v + e, i = g / 3, c = g % 3;
@@ -68,21 +59,61 @@ RELIGHT_TARGET_AVX512_VNNI inline void StoreRgb(const __m512i* rgb, uint32_t cou
   }
 }
 
+// The multipliers of every pair, and of an odd count's last component
+// paired with 0 (its weights are zero-extended), as the int32 lanes
+// vpdpwssd takes: packed[ch][p].
+void PairMultipliers(const ClusterMultipliers& m, uint32_t components,
+                     int32_t (*packed)[kMaxCompressedComponents / 2 + 1]) {
+  const uint32_t pairs = components / 2;
+  for (int ch = 0; ch < 3; ++ch) {
+    for (uint32_t p = 0; p < pairs; ++p) {
+      packed[ch][p] = PackPair(m.k[ch * components + 2 * p], m.k[ch * components + 2 * p + 1]);
+    }
+    if (components % 2 != 0) packed[ch][pairs] = PackPair(m.k[ch * components + components - 1], 0);
+  }
+}
+
+// One tile of `count` receivers (1 .. 16; compressed_tiles.h) into acc[3]:
+// plain loads for a full tile, masked ones for the cluster's short last tile.
+RELIGHT_TARGET_AVX512_VNNI inline void AccumulateTile(const int16_t* tile, uint32_t count,
+                                                      uint32_t components,
+                                                      const __m512i (*k)[kMaxCompressedComponents / 2 + 1],
+                                                      __m512i* acc) {
+  const uint32_t pairs = components / 2;
+  if (count == 16) {
+    for (uint32_t p = 0; p < pairs; ++p) {
+      const __m512i v = _mm512_loadu_si512(tile + 32 * p);
+      for (int ch = 0; ch < 3; ++ch) acc[ch] = _mm512_dpwssd_epi32(acc[ch], v, k[ch][p]);
+    }
+    if (components % 2 != 0) {
+      const __m512i v = _mm512_cvtepu16_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(tile + 32 * pairs)));
+      for (int ch = 0; ch < 3; ++ch) acc[ch] = _mm512_dpwssd_epi32(acc[ch], v, k[ch][pairs]);
+    }
+    return;
+  }
+  const __mmask32 words = static_cast<__mmask32>((1u << (2 * count)) - 1);  // count < 16
+  for (uint32_t p = 0; p < pairs; ++p) {
+    const __m512i v = _mm512_maskz_loadu_epi16(words, tile + size_t{2 * count} * p);
+    for (int ch = 0; ch < 3; ++ch) acc[ch] = _mm512_dpwssd_epi32(acc[ch], v, k[ch][p]);
+  }
+  if (components % 2 != 0) {
+    const __mmask16 lanes = static_cast<__mmask16>((1u << count) - 1);
+    const __m512i v = _mm512_cvtepu16_epi32(_mm256_maskz_loadu_epi16(lanes, tile + size_t{2 * count} * pairs));
+    for (int ch = 0; ch < 3; ++ch) acc[ch] = _mm512_dpwssd_epi32(acc[ch], v, k[ch][pairs]);
+  }
+}
+
 }  // namespace
 
 RELIGHT_TARGET_AVX512_VNNI void CompressedClusterAvx512VnniQ12(const int16_t* w, uint32_t n,
                                                               uint32_t components,
                                                               const ClusterMultipliers& m,
                                                               int32_t* out) {
-  const uint32_t pairs = (components + 1) / 2;
-  __m512i k[3][kMaxCompressedComponents / 2];
+  int32_t packed[3][kMaxCompressedComponents / 2 + 1];
+  PairMultipliers(m, components, packed);
+  __m512i k[3][kMaxCompressedComponents / 2 + 1];
   for (int ch = 0; ch < 3; ++ch) {
-    for (uint32_t p = 0; p < pairs; ++p) {
-      const uint32_t j = 2 * p;
-      // An odd count pairs the last component with a zero multiplier.
-      const int16_t kb = j + 1 < components ? m.k[ch * components + j + 1] : int16_t{0};
-      k[ch][p] = _mm512_set1_epi32(PackPair(m.k[ch * components + j], kb));
-    }
+    for (uint32_t p = 0; p < (components + 1) / 2; ++p) k[ch][p] = _mm512_set1_epi32(packed[ch][p]);
   }
   __m512i half[3], mean[3];
   __m128i shift[3];
@@ -92,49 +123,38 @@ RELIGHT_TARGET_AVX512_VNNI void CompressedClusterAvx512VnniQ12(const int16_t* w,
     mean[ch] = _mm512_set1_epi32(m.mean[ch]);
     shift[ch] = _mm_cvtsi32_si128(s);
   }
-  const __m512i pair_first = _mm512_loadu_si512(kIndices.pairs[0]), pair_second = _mm512_loadu_si512(kIndices.pairs[1]);
-  for (uint32_t i0 = 0; i0 < n; i0 += 32) {
-    const uint32_t left = n - i0;
-    // The last step reads only its receivers (masked lanes do not fault).
-    const __mmask32 lanes = left >= 32 ? ~__mmask32{0} : static_cast<__mmask32>((1u << left) - 1);
-    __m512i lo[3], hi[3];  // receivers i0 + 0..15, i0 + 16..31; from the rounding half (header)
-    for (int ch = 0; ch < 3; ++ch) lo[ch] = hi[ch] = half[ch];
-    for (uint32_t p = 0; p < pairs; ++p) {
-      const uint32_t j = 2 * p;
-      // Plain loads but on the last step: AMD's prefetchers follow masked
-      // loads less well (recombine_vnni.cc).
-      const int16_t* wa = w + size_t{j} * n + i0;
-      const __m512i a = left >= 32 ? _mm512_loadu_si512(wa) : _mm512_maskz_loadu_epi16(lanes, wa);
-      const __m512i b = j + 1 >= components ? _mm512_setzero_si512()
-                        : left >= 32        ? _mm512_loadu_si512(wa + n)
-                                            : _mm512_maskz_loadu_epi16(lanes, wa + n);
-      const __m512i ul = _mm512_permutex2var_epi16(a, pair_first, b);
-      const __m512i uh = _mm512_permutex2var_epi16(a, pair_second, b);
-      for (int ch = 0; ch < 3; ++ch) {
-        lo[ch] = _mm512_dpwssd_epi32(lo[ch], ul, k[ch][p]);
-        hi[ch] = _mm512_dpwssd_epi32(hi[ch], uh, k[ch][p]);
-      }
-    }
-    __m512i first[3], second[3];  // receivers i0 + 0..15, i0 + 16..31
+  uint32_t i0 = 0;
+  // Two full tiles a step: six independent vpdpwssd chains.
+  for (; i0 + 32 <= n; i0 += 32) {
+    const int16_t* tile = w + size_t{i0} * components;
+    __m512i a[3] = {half[0], half[1], half[2]}, b[3] = {half[0], half[1], half[2]};
+    AccumulateTile(tile, 16, components, k, a);
+    AccumulateTile(tile + 16 * components, 16, components, k, b);
     for (int ch = 0; ch < 3; ++ch) {
-      first[ch] = _mm512_add_epi32(mean[ch], _mm512_sra_epi32(lo[ch], shift[ch]));
-      second[ch] = _mm512_add_epi32(mean[ch], _mm512_sra_epi32(hi[ch], shift[ch]));
+      a[ch] = _mm512_add_epi32(mean[ch], _mm512_sra_epi32(a[ch], shift[ch]));
+      b[ch] = _mm512_add_epi32(mean[ch], _mm512_sra_epi32(b[ch], shift[ch]));
     }
-    StoreRgb(first, left < 16 ? left : 16, out + size_t{i0} * 3);
-    if (left > 16) StoreRgb(second, left - 16 < 16 ? left - 16 : 16, out + size_t{i0} * 3 + 48);
+    StoreRgb(a, 16, out + size_t{i0} * 3);
+    StoreRgb(b, 16, out + size_t{i0} * 3 + 48);
+  }
+  // The rest one tile at a time: a full one, then a short last one.
+  for (; i0 < n; i0 += 16) {
+    const uint32_t count = n - i0 < 16 ? n - i0 : 16;
+    __m512i a[3] = {half[0], half[1], half[2]};
+    AccumulateTile(w + size_t{i0} * components, count, components, k, a);
+    for (int ch = 0; ch < 3; ++ch) a[ch] = _mm512_add_epi32(mean[ch], _mm512_sra_epi32(a[ch], shift[ch]));
+    StoreRgb(a, count, out + size_t{i0} * 3);
   }
 }
 
 RELIGHT_TARGET_AVX_VNNI void CompressedClusterAvxVnniQ12(const int16_t* w, uint32_t n, uint32_t components,
                                                          const ClusterMultipliers& m, int32_t* out) {
-  const uint32_t pairs = (components + 1) / 2;
-  __m256i k[3][kMaxCompressedComponents / 2];
+  const uint32_t pairs = components / 2;
+  int32_t packed[3][kMaxCompressedComponents / 2 + 1];
+  PairMultipliers(m, components, packed);
+  __m256i k[3][kMaxCompressedComponents / 2 + 1];
   for (int ch = 0; ch < 3; ++ch) {
-    for (uint32_t p = 0; p < pairs; ++p) {
-      const uint32_t j = 2 * p;
-      const int16_t kb = j + 1 < components ? m.k[ch * components + j + 1] : int16_t{0};
-      k[ch][p] = _mm256_set1_epi32(PackPair(m.k[ch * components + j], kb));
-    }
+    for (uint32_t p = 0; p < (components + 1) / 2; ++p) k[ch][p] = _mm256_set1_epi32(packed[ch][p]);
   }
   __m256i half[3], mean[3];
   __m128i shift[3];
@@ -144,29 +164,33 @@ RELIGHT_TARGET_AVX_VNNI void CompressedClusterAvxVnniQ12(const int16_t* w, uint3
     mean[ch] = _mm256_set1_epi32(m.mean[ch]);
     shift[ch] = _mm_cvtsi32_si128(s);
   }
-  const uint32_t blocks = n / 16;
-  for (uint32_t blk = 0; blk < blocks; ++blk) {
-    const uint32_t i0 = 16 * blk;
-    __m256i lo[3], hi[3];  // receivers i0 + {0..3 | 8..11}, i0 + {4..7 | 12..15}
+  const uint32_t tiles = n / 16;  // full tiles; the caller does the short last one
+  for (uint32_t b = 0; b < tiles; ++b) {
+    const uint32_t i0 = 16 * b;
+    const int16_t* tile = w + size_t{i0} * components;
+    __m256i lo[3], hi[3];  // receivers i0 + 0..7, i0 + 8..15
     for (int ch = 0; ch < 3; ++ch) lo[ch] = hi[ch] = half[ch];
     for (uint32_t p = 0; p < pairs; ++p) {
-      const uint32_t j = 2 * p;
-      const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + size_t{j} * n + i0));
-      const __m256i b = j + 1 < components
-                            ? _mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + size_t{j + 1} * n + i0))
-                            : _mm256_setzero_si256();
-      const __m256i ul = _mm256_unpacklo_epi16(a, b), uh = _mm256_unpackhi_epi16(a, b);
+      const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(tile + 32 * p));
+      const __m256i c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(tile + 32 * p + 16));
       for (int ch = 0; ch < 3; ++ch) {
-        lo[ch] = _mm256_dpwssd_avx_epi32(lo[ch], ul, k[ch][p]);
-        hi[ch] = _mm256_dpwssd_avx_epi32(hi[ch], uh, k[ch][p]);
+        lo[ch] = _mm256_dpwssd_avx_epi32(lo[ch], a, k[ch][p]);
+        hi[ch] = _mm256_dpwssd_avx_epi32(hi[ch], c, k[ch][p]);
       }
     }
-    __m256i first[3], second[3];  // receivers i0 + 0..7, i0 + 8..15
+    if (components % 2 != 0) {
+      const int16_t* last = tile + 32 * pairs;
+      const __m256i a = _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(last)));
+      const __m256i c = _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(last + 8)));
+      for (int ch = 0; ch < 3; ++ch) {
+        lo[ch] = _mm256_dpwssd_avx_epi32(lo[ch], a, k[ch][pairs]);
+        hi[ch] = _mm256_dpwssd_avx_epi32(hi[ch], c, k[ch][pairs]);
+      }
+    }
+    __m256i first[3], second[3];
     for (int ch = 0; ch < 3; ++ch) {
-      const __m256i l = _mm256_add_epi32(mean[ch], _mm256_sra_epi32(lo[ch], shift[ch]));
-      const __m256i h = _mm256_add_epi32(mean[ch], _mm256_sra_epi32(hi[ch], shift[ch]));
-      first[ch] = _mm256_permute2x128_si256(l, h, 0x20);
-      second[ch] = _mm256_permute2x128_si256(l, h, 0x31);
+      first[ch] = _mm256_add_epi32(mean[ch], _mm256_sra_epi32(lo[ch], shift[ch]));
+      second[ch] = _mm256_add_epi32(mean[ch], _mm256_sra_epi32(hi[ch], shift[ch]));
     }
     cpca_simd::StoreInterleaved(first[0], first[1], first[2], out + size_t{i0} * 3);
     cpca_simd::StoreInterleaved(second[0], second[1], second[2], out + size_t{i0} * 3 + 24);

@@ -16,20 +16,19 @@
 
 namespace relight {
 
-// AVX-512 (F, BW, VL, VNNI), 32 receivers a step in 512-bit registers; the
-// last step (n % 32 receivers) with masked loads and stores, so it does
-// receivers [0, n), all of them. Shifts >= 0 only (the caller checks).
-// Per 32 receivers and component pair: two loads, two vpermt2w into int16
-// pairs in receiver order, six vpdpwssd (two per channel); then per channel
-// a shift and the mean, and 12 vpermt2d interleave R, G, B. (In-lane
-// unpacks instead of vpermt2w need 6 more permutes a step to restore the
-// receiver order; no faster, measured: docs/performance.md.)
+// AVX-512 (F, BW, VL, VNNI), two 16-receiver tiles (compressed_tiles.h) a
+// step in 512-bit registers; the cluster's short last tile with masked loads
+// and stores, so it does receivers [0, n), all of them. Shifts >= 0 only
+// (the caller checks). Per tile and component pair: one load, already the
+// 16 receivers' int16 pairs, and three vpdpwssd (one per channel); an odd
+// count's last component zero-extended to (w, 0) pairs; then per channel a
+// shift and the mean, and 6 vpermt2d interleave R, G, B.
 void CompressedClusterAvx512VnniQ12(const int16_t* w, uint32_t n, uint32_t components,
                                     const ClusterMultipliers& m, int32_t* out);
 
 // AVX-VNNI (VEX, 256 bits): the AVX2 body (compressed_recombine_avx2.h) with
 // each vpmaddwd + vpaddd fused into one vpdpwssd. Receivers
-// [0, n - n % 16), shifts >= 0 only; the caller does the tail.
+// [0, n - n % 16) (the full tiles), shifts >= 0 only; the caller does the tail.
 void CompressedClusterAvxVnniQ12(const int16_t* w, uint32_t n, uint32_t components,
                                  const ClusterMultipliers& m, int32_t* out);
 

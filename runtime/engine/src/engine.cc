@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "compressed_tiles.h"
 #include "console_aim.h"
 #include "emitter_grids.h"
 #include "engine_threads.h"
@@ -51,6 +52,9 @@ struct Engine::Impl {
   EngineThreads threads;  // last: its workers are joined first
 
   Status Allocate(const EngineOptions& options) {
+    for (BakeLuminaire& b : bake.luminaires) {
+      for (BakeLightReceivers& rx : b.receivers) TileCompressedWeights(&rx.compressed);
+    }
     RELIGHT_RETURN_IF_ERROR(SetUpLuminaires(bake, &lums, &work));
     SizeOutputs(bake, &out, &mix);
     RELIGHT_RETURN_IF_ERROR(emitters.Open(bake, options.emitter_refine_links));

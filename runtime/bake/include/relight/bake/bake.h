@@ -124,9 +124,17 @@ struct BakeZoom {
 //   weights: cluster by cluster, component-major inside a cluster: receiver
 //     cluster_start[c] + i has weight j at weights[cluster_start[c] * r + j * n_c + i]
 //     (n_c its cluster's size); real weight = q / kCompressedWeightOne.
+//     That is the file's order. The engine reorders them at Open into tiles
+//     of 16 receivers (CompressedWeightOrder::kTiles16, engine
+//     compressed_tiles.h), so its kernel reads one sequential stream.
 // The runtime recombines this form without expanding it (engine, compressed_recombine.h).
 inline constexpr int16_t kCompressedWeightOne = 16383;
 inline constexpr uint32_t kMaxCompressedComponents = 64;
+
+enum class CompressedWeightOrder : uint8_t {
+  kComponentMajor,  // as in the file (above); what the baker builds and the writer takes
+  kTiles16,         // the engine's run-time order; never written
+};
 
 struct BakeCompressedBasis {
   uint32_t components = 0;               // r, in [0, kMaxCompressedComponents]
@@ -134,6 +142,7 @@ struct BakeCompressedBasis {
   std::vector<int16_t> vectors;          // 3 x terms x C x (r + 1), see above
   std::vector<QuantScale> vector_scale;  // [term][channel]
   std::vector<int16_t> weights;          // receivers x r, each in [-kCompressedWeightOne, kCompressedWeightOne]
+  CompressedWeightOrder weight_order = CompressedWeightOrder::kComponentMajor;
   bool present() const { return !cluster_start.empty(); }
   uint32_t cluster_count() const {
     return cluster_start.empty() ? 0 : static_cast<uint32_t>(cluster_start.size() - 1);
