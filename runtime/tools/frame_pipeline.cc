@@ -1,5 +1,7 @@
 #include "frame_pipeline.h"
 
+#include "relight/base/clock.h"
+
 namespace relight::cli {
 
 CameraView CameraFromBake(const BakeCamera& cam) {
@@ -22,9 +24,14 @@ Status FramePipeline::Init(const Engine& engine, int width, int height, const Ca
 }
 
 Status FramePipeline::Render(Engine& engine) {
+  const int64_t start_us = MonotonicUs();
   engine.Update();
+  const int64_t updated_us = MonotonicUs();
   ToneMapRgb8(tone_map_, engine.vertex_luminance(), vertex_rgb_.data());
-  return frame_.Draw(vertex_rgb_.data(), pixels_.data());
+  const Status st = frame_.Draw(vertex_rgb_.data(), pixels_.data());
+  last_update_us_ = updated_us - start_us;
+  last_draw_us_ = MonotonicUs() - updated_us;
+  return st;
 }
 
 }  // namespace relight::cli

@@ -23,6 +23,9 @@ class FramePipeline {
   Status Init(const Engine& engine, int width, int height, const CameraView& view, int32_t white_q12);
   // Brings the engine up to date and draws; the frame is in pixels().
   Status Render(Engine& engine);
+  // The last Render's parts, microseconds: Engine::Update, then tone map + draw.
+  int64_t last_update_us() const { return last_update_us_; }
+  int64_t last_draw_us() const { return last_draw_us_; }
 
   const uint8_t* pixels() const { return pixels_.data(); }
   int width() const { return frame_.width(); }
@@ -33,6 +36,7 @@ class FramePipeline {
   ToneMap tone_map_;
   std::vector<uint8_t> vertex_rgb_;
   std::vector<uint8_t> pixels_;
+  int64_t last_update_us_ = 0, last_draw_us_ = 0;
 };
 
 }  // namespace relight::cli

@@ -49,6 +49,13 @@ TEST(Daemon, ReplayGivesBitIdenticalFramesEveryRun) {
   const std::string second = RenderReplayToPpm(true, "replay_b.ppm", nullptr);
   // 0.5 s of script at 10 frames/s: frames at 0, 0.1, ..., 0.5 s.
   EXPECT_EQ(stats.frames, 6);
+  // Every drawn frame's time is in the summary's histograms, its parts within the whole.
+  EXPECT_GE(stats.renders, 1);
+  EXPECT_EQ(stats.render_times.count(), stats.renders);
+  EXPECT_EQ(stats.update_times.count(), stats.renders);
+  EXPECT_EQ(stats.draw_times.count(), stats.renders);
+  EXPECT_LE(stats.update_times.max_us() + stats.draw_times.max_us(), 2 * stats.render_times.max_us() + 1);
+  EXPECT_GT(stats.draw_times.max_us(), 0) << "a 96x72 draw takes some microseconds";
   const size_t frame_bytes = std::strlen("P6\n96 72\n255\n") + 96 * 72 * 3;
   ASSERT_EQ(first.size(), 6 * frame_bytes);
   EXPECT_TRUE(first == second) << "the same script must give the same bytes";

@@ -386,6 +386,9 @@ Status Daemon::Run(const std::atomic<bool>& stop, std::atomic<bool>& reload) {
       render_us = MonotonicUs() - render_start_us;
       have_frame = true;
       ++m.stats.renders;
+      m.stats.render_times.Add(render_us);
+      m.stats.update_times.Add(m.pipeline.last_update_us());
+      m.stats.draw_times.Add(m.pipeline.last_draw_us());
     }
     RELIGHT_RETURN_IF_ERROR(m.WriteSinks(frame));
     const int64_t out_us = MonotonicUs();

@@ -38,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "duration_histogram.h"
 #include "frame_pipeline.h"
 #include "frame_sink.h"
 #include "relight/engine/engine.h"
@@ -83,7 +84,9 @@ struct DaemonStats {
   int64_t renders = 0;        // drawn (a frame where nothing moved is sent again, not redrawn)
   int64_t early_frames = 0;   // rendered between ticks for a live change
   int64_t ticks_skipped = 0;  // render too slow for the frame rate
-  int64_t render_us_total = 0, render_us_max = 0;
+  int64_t render_us_total = 0, render_us_max = 0;  // over the renders
+  // Per render: the whole (= FrameInfo::render_us), Engine::Update, tone map + draw.
+  DurationHistogram render_times, update_times, draw_times;
   uint32_t last_latency_us = 0;
   int64_t changes_applied = 0;
   int reloads = 0, reload_failures = 0;

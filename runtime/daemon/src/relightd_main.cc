@@ -159,13 +159,24 @@ int main(int argc, char** argv) {
   const relight::Status st = daemon.Run(g_stop, g_reload);
   notifier.Stopping();
   const relight::daemon::DaemonStats stats = daemon.stats();
+  const auto ms = [](int64_t us) { return static_cast<double>(us) / 1e3; };
   relight::Log(relight::LogLevel::kInfo,
-                    "relightd: %lld frames, %lld ticks skipped, render %.1f ms mean / %.1f ms max, last write-to-frame "
-                    "latency %.1f ms%s",
-                    static_cast<long long>(stats.frames), static_cast<long long>(stats.ticks_skipped),
-                    stats.frames > 0 ? static_cast<double>(stats.render_us_total) / static_cast<double>(stats.frames) / 1e3 : 0.0,
-                    static_cast<double>(stats.render_us_max) / 1e3, stats.last_latency_us / 1e3,
-                    g_stop.load() ? " (stopped by signal)" : "");
+               "relightd: %lld frames (%lld drawn, the rest unchanged and sent again), %lld ticks skipped, last "
+               "write-to-frame latency %.1f ms%s",
+               static_cast<long long>(stats.frames), static_cast<long long>(stats.renders),
+               static_cast<long long>(stats.ticks_skipped), stats.last_latency_us / 1e3,
+               g_stop.load() ? " (stopped by signal)" : "");
+  if (stats.renders > 0) {
+    // Percentiles to 0.1 ms (duration_histogram.h).
+    const relight::daemon::DurationHistogram& r = stats.render_times;
+    relight::Log(relight::LogLevel::kInfo,
+                 "relightd: render (engine update + tone map + draw) %.1f ms mean, p50 %.1f, p99 %.1f, max %.1f ms; "
+                 "engine update p50 %.1f, p99 %.1f ms; tone map + draw p50 %.1f, p99 %.1f ms",
+                 ms(stats.render_us_total) / static_cast<double>(stats.renders), ms(r.QuantileUs(500)),
+                 ms(r.QuantileUs(990)), ms(r.max_us()), ms(stats.update_times.QuantileUs(500)),
+                 ms(stats.update_times.QuantileUs(990)), ms(stats.draw_times.QuantileUs(500)),
+                 ms(stats.draw_times.QuantileUs(990)));
+  }
   if (!st.ok()) return Fail(st, 1);
   return 0;
 }
