@@ -239,6 +239,37 @@ TEST(SurfaceEmitterAr, PoolTooSmallIsAnErrorAndChangesNothing) {
   EXPECT_TRUE(engine.SetSurfaceEmitter(0, as_fe, light).ok());
 }
 
+// The first shot's sources are cut in two parts whatever the thread count
+// (surface_emitter_refine.h): one, two or three engine threads give the same
+// bits for every placement, move and the link count.
+TEST(SurfaceEmitterAr, SameBitsOnOneTwoAndThreeThreads) {
+  const Bake bake = BoxBake();
+  const SurfaceEmitterShape shapes[3] = {MakeShape("ceiling", kBoxCeilingEmitter),
+                                         MakeShape("ceiling", {{0.35, 0.3, 1}, {0.75, 0.32, 1}, {0.65, 0.7, 1}}),
+                                         MakeShape("floor", {{0.1, 0.1, 0}, {0.9, 0.15, 0}, {0.5, 0.9, 0}})};
+  const LightQ12 light[3] = {Light(100), Light(90), Light(80)};
+  std::vector<std::vector<int32_t>> want;
+  for (int threads : {1, 2, 3}) {
+    EngineOptions options;
+    options.threads = threads;
+    Engine engine;
+    ASSERT_TRUE(engine.Open(bake, options).ok());
+    ASSERT_EQ(engine.thread_count(), threads);
+    std::vector<std::vector<int32_t>> got;
+    for (int i = 0; i < 3; ++i) {
+      ASSERT_TRUE(engine.SetSurfaceEmitter(i % 2, shapes[i], light).ok());
+      engine.Update();
+      got.push_back(Luminance(engine));
+    }
+    if (threads == 1) {
+      want = got;
+      EXPECT_NE(want[0], want[1]) << "the move changes the picture";
+      continue;
+    }
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(got[i], want[i]) << threads << " threads, placement " << i;
+  }
+}
+
 TEST(SurfaceEmitterAr, PlacementsAndMovesDoNotAllocate) {
   Engine engine;
   ASSERT_TRUE(engine.Open(BoxBake()).ok());

@@ -350,7 +350,7 @@ Status Engine::SetSurfaceEmitter(int slot, const SurfaceEmitterShape& shape,
       return Status(StatusCode::kInvalidArgument, "surface emitter: luminance < 0");
     }
   }
-  RELIGHT_RETURN_IF_ERROR(impl_->emitters.Place(slot, shape));
+  RELIGHT_RETURN_IF_ERROR(impl_->emitters.Place(slot, shape, &impl_->threads.pool));
   impl_->remix = true;
   return impl_->emitters.SetLuminance(slot, luminance);
 }

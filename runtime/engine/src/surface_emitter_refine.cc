@@ -15,6 +15,7 @@
 #include "relight/base/fixed_math.h"
 #include "relight/base/fixed_ops.h"
 #include "surface_emitter_frame.h"
+#include "worker_pool.h"
 
 namespace relight {
 namespace {
@@ -61,6 +62,7 @@ Status SurfaceEmitterRefine::Open(const Bake& bake, int pool_links) {
   mesh_ = &bake.mesh;
   const BakeHierarchy& h = *h_;
   const uint32_t n = h.node_count();
+  if (n >= kPartialJob) return Status(StatusCode::kOutOfRange, "surface emitter: more than 2^31 hierarchy nodes");
   centroid_q16_.assign(size_t{n} * 3, 0);
   centre_uv_q16_.assign(size_t{n} * 2, 0);
   normal_q30_.assign(bake.mesh.surface_names.size() * 3, 0);
@@ -122,10 +124,13 @@ Status SurfaceEmitterRefine::Open(const Bake& bake, int pool_links) {
     if (h.link_f_qp[i] != 0) send_[fill[h.link_p[i]]++] = 2 * i + 1;
   }
   coverage_mean_q32_.assign(n, 0);
-  e0_.assign(n, 0);
-  eu_.assign(n, 0);
-  ev_.assign(n, 0);
-  pool_.assign(static_cast<size_t>(pool_links), NewLink{0, 0, 0, 0});
+  for (Part& part : parts_) {
+    part.e0.assign(n, 0);
+    part.eu.assign(n, 0);
+    part.ev.assign(n, 0);
+    part.pool.assign(static_cast<size_t>(pool_links), NewLink{0, 0, 0, 0});
+  }
+  jobs_.assign(n, 0);
   refine_threshold_q32_ = kRefineThresholdQ32;
   return Status::Ok();
 }
@@ -217,105 +222,18 @@ uint64_t SurfaceEmitterRefine::SumFactorsQ32(uint32_t receiver, const int64_t (*
   return sum;
 }
 
-void SurfaceEmitterRefine::Add(uint32_t receiver, int64_t e0, int64_t eu, int64_t ev) {
-  if (needed_ < pool_.size()) pool_[needed_] = {receiver, e0, eu, ev};
-  ++needed_;  // past the pool: only counts what the placement would need
-}
+namespace {
 
-void SurfaceEmitterRefine::Send(uint32_t link_side, uint64_t ratio_q32) {
-  const BakeHierarchy& h = *h_;
-  const uint32_t link = link_side >> 1;
-  const bool from_p = (link_side & 1) != 0;
-  const uint32_t r = from_p ? h.link_q[link] : h.link_p[link];
-  const uint32_t f = from_p ? h.link_f_qp[link] : h.link_f_pq[link];
-  const int32_t* g = from_p ? &h.link_g_qp[2 * size_t{link}] : &h.link_g_pq[2 * size_t{link}];
-  e0_[r] = AddSat64(e0_[r], RoundShiftSat64(static_cast<Int128>(f) * ratio_q32, -32));
-  if (g[0] != 0 || g[1] != 0) {
-    eu_[r] = AddSat64(eu_[r], RoundShiftSat64(static_cast<Int128>(g[0]) * ratio_q32, -kBakeGradientFracBits));
-    ev_[r] = AddSat64(ev_[r], RoundShiftSat64(static_cast<Int128>(g[1]) * ratio_q32, -kBakeGradientFracBits));
-  }
-}
+struct PartJob {
+  SurfaceEmitterRefine* refine;
+  const EmitterClip3* clip;
+  int threads;
+};
 
-// Below a receiver the stored link treated as one node: each child gets the
-// emitter's light at its own points, with the link's visibility (route (a)).
-void SurfaceEmitterRefine::RefineReceiver(uint32_t node, const Source& source, uint64_t visibility_q32,
-                                          uint64_t reverse_q32) {
-  const BakeHierarchy& h = *h_;
-  if (!h.leaf(node) && ((reverse_q32 * source.coverage_q32) >> 32) >= refine_threshold_q32_) {
-    const uint32_t first = h.node_first_child[node];
-    for (uint32_t c = first; c < first + h.node_child_count[node]; ++c) {
-      const uint64_t share = static_cast<uint64_t>((static_cast<UInt128>(reverse_q32) * h.node_area[c]) / h.node_area[node]);
-      RefineReceiver(c, source, visibility_q32, share);
-    }
-    return;
-  }
-  if (needed_ >= pool_.size()) return Add(node, 0, 0, 0);
-  // An inner node left here keeps the light's slope over it, as a stored
-  // link's gradient does; a leaf takes its mean.
-  int64_t slope[2] = {0, 0};
-  const uint64_t sum =
-      SumFactorsQ32(node, source.poly, source.count, source.centre, source.radius, h.leaf(node) ? nullptr : slope);
-  const uint64_t mean = sum / static_cast<uint64_t>(h.node_corner_count[node]);
-  Add(node, RoundShiftSat64(static_cast<Int128>(mean) * visibility_q32, -32),
-      RoundShiftSat64(static_cast<Int128>(slope[0]) * visibility_q32, -32),
-      RoundShiftSat64(static_cast<Int128>(slope[1]) * visibility_q32, -32));
-}
-
-// One link of an emitting node: FE's share where it carries little of the
-// emitter's light (BF's F x B below the threshold), else new factors.
-void SurfaceEmitterRefine::SendLink(const Source& source, uint32_t link_side) {
-  const BakeHierarchy& h = *h_;
-  const uint32_t link = link_side >> 1;
-  const bool from_p = (link_side & 1) != 0;
-  const uint32_t r = from_p ? h.link_q[link] : h.link_p[link];
-  const uint64_t f = from_p ? h.link_f_qp[link] : h.link_f_pq[link];
-  const uint64_t reverse = from_p ? h.link_f_pq[link] : h.link_f_qp[link];  // r's size seen from the source
-  const uint64_t cov = source.coverage_q32;
-  // Where in the node the emitter sits matters when the node looks large
-  // from the receiver; how the light varies over the receiver, when the
-  // receiver looks large from the emitter.
-  const bool refine_source = source.partial && ((f * cov) >> 32) >= refine_threshold_q32_;
-  const bool refine_receiver = !h.leaf(r) && ((reverse * cov) >> 32) >= refine_threshold_q32_;
-  if (!refine_source && !refine_receiver) return Send(link_side, cov);
-  if (needed_ >= pool_.size()) {  // over: count, do not compute
-    if (!refine_receiver) return Add(r, 0, 0, 0);
-    return RefineReceiver(r, source, 0, reverse);
-  }
-  int64_t whole[kBakeMaxNodeCorners][3], whole_centre[3], whole_radius = 0;
-  const int whole_count = Corners(source.node, whole);
-  Bound(whole, whole_count, whole_centre, &whole_radius);
-  const uint64_t den = SumFactorsQ32(r, whole, whole_count, whole_centre, whole_radius);
-  // The receiver sees the node only edge-on at its points: keep FE's share.
-  if (den == 0) return Send(link_side, cov);
-  // The same points for both, so the ratio is the emitter's share as r sees it.
-  const uint64_t num =
-      source.partial ? SumFactorsQ32(r, source.poly, source.count, whole_centre, whole_radius) : den;
-  if (!refine_receiver) {
-    const UInt128 ratio = (static_cast<UInt128>(num) << 32) / den;
-    const int32_t* g = from_p ? &h.link_g_qp[2 * size_t{link}] : &h.link_g_pq[2 * size_t{link}];
-    const uint64_t ratio_q32 = ratio > (static_cast<UInt128>(1) << 32) ? kOne : static_cast<uint64_t>(ratio);
-    Add(r, RoundShiftSat64(static_cast<Int128>(f) * ratio_q32, -32),
-        RoundShiftSat64(static_cast<Int128>(g[0]) * ratio_q32, -kBakeGradientFracBits),
-        RoundShiftSat64(static_cast<Int128>(g[1]) * ratio_q32, -kBakeGradientFracBits));
-    return;
-  }
-  // The stored factor over the unoccluded one: the link's visibility, which
-  // the receiver's children inherit (capped at 2: quadratures differ).
-  const UInt128 vis = (static_cast<UInt128>(f) * h.node_corner_count[r] << 32) / den;
-  const uint64_t vis_q32 = vis > (static_cast<UInt128>(2) << 32) ? 2 * kOne : static_cast<uint64_t>(vis);
-  RefineReceiver(r, source, vis_q32, reverse);
-}
-
-void SurfaceEmitterRefine::SendSubtree(uint32_t node, int64_t (*scratch)[3]) {
-  Source source{node, scratch, Corners(node, scratch), static_cast<uint64_t>(kOne), false, {0, 0, 0}, 0};
-  Bound(source.poly, source.count, source.centre, &source.radius);
-  for (uint32_t e = send_offsets_[node]; e < send_offsets_[node + 1]; ++e) SendLink(source, send_[e]);
-  const uint32_t first = h_->node_first_child[node];
-  for (uint32_t c = first; c < first + h_->node_child_count[node]; ++c) SendSubtree(c, scratch);
-}
+}  // namespace
 
 Status SurfaceEmitterRefine::FirstShot(uint32_t root, const SurfaceEmitterShape& shape, const int64_t* coverage_q32,
-                                       int64_t* leaf_irradiance_q32) {
+                                       int64_t* leaf_irradiance_q32, WorkerPool* workers) {
   const BakeHierarchy& h = *h_;
   const uint32_t n = h.node_count(), end = tree_end_[root];
   // How much of each node the emitter covers (area-weighted, as FE's pull).
@@ -330,67 +248,81 @@ Status SurfaceEmitterRefine::FirstShot(uint32_t root, const SurfaceEmitterShape&
       sum += static_cast<Int128>(h.node_area[c]) * coverage_mean_q32_[c];
     coverage_mean_q32_[k] = h.node_area[k] == 0 ? 0 : static_cast<int64_t>(sum / h.node_area[k]);
   }
-  EmitterClip3 clip;
-  clip.Set(shape, drop_axis_[h.node_surface[root]]);
-  for (uint32_t k = 0; k < n; ++k) e0_[k] = eu_[k] = ev_[k] = 0;
   // Fig. 5 from the root: fully covered subtrees send as they are; a partly
-  // covered node's links get new factors for its clipped part.
+  // covered node's links get new factors for its clipped part. The walk
+  // only lists the sources; the parts send (surface_emitter_refine_send.cc).
   uint32_t stack[kStackNodes];
   int depth = 0;
   stack[depth++] = root;
-  needed_ = 0;
-  int64_t clipped[kMaxFactorPolygonCorners][3];
+  job_count_ = 0;
   while (depth > 0) {
     const uint32_t s = stack[--depth];
     if (coverage_mean_q32_[s] <= 0) continue;
     if (coverage_mean_q32_[s] >= kOne) {
-      SendSubtree(s, clipped);
+      AddJobs(s);
       continue;
     }
-    const int count = clip.Clip(h, *mesh_, s, clipped);
-    Source source{s, clipped, count, static_cast<uint64_t>(coverage_mean_q32_[s]), true, {0, 0, 0}, 0};
-    Bound(source.poly, source.count, source.centre, &source.radius);
-    for (uint32_t e = send_offsets_[s]; e < send_offsets_[s + 1]; ++e) {
-      if (count == 0) {
-        Send(send_[e], source.coverage_q32);  // a sliver the clip lost
-      } else {
-        SendLink(source, send_[e]);
-      }
-    }
+    jobs_[job_count_++] = s | kPartialJob;
     const uint32_t first = h.node_first_child[s];
     for (uint32_t c = first; c < first + h.node_child_count[s]; ++c) {
       if (depth == kStackNodes) return Status(StatusCode::kInternal, "surface emitter: quadtree too deep");
       stack[depth++] = c;
     }
   }
-  if (needed_ > pool_.size()) {
+  EmitterClip3 clip;
+  clip.Set(shape, drop_axis_[h.node_surface[root]]);
+  if (workers != nullptr && workers->threads() > 1) {
+    PartJob job{this, &clip, workers->threads()};
+    workers->Run(
+        [](void* context, int thread) {
+          const PartJob& j = *static_cast<const PartJob*>(context);
+          for (int p = thread; p < kParts; p += j.threads) j.refine->RunPart(p, *j.clip);
+        },
+        &job);
+  } else {
+    for (int p = 0; p < kParts; ++p) RunPart(p, clip);
+  }
+  size_t needed = 0;
+  for (const Part& part : parts_) needed += part.needed;
+  if (needed > parts_[0].pool.size()) {
     return Status(StatusCode::kOutOfRange,
                   StrFormat("surface emitter (adaptive refine): the polygon needs %zu new links, more than "
                             "the %zu the refine pool holds (EngineOptions::emitter_refine_links)",
-                            needed_, pool_.size()));
+                            needed, parts_[0].pool.size()));
   }
-  for (size_t i = 0; i < needed_; ++i) {
-    const NewLink& l = pool_[i];
-    e0_[l.receiver] = AddSat64(e0_[l.receiver], l.e0_q32);
-    eu_[l.receiver] = AddSat64(eu_[l.receiver], l.eu_q32);
-    ev_[l.receiver] = AddSat64(ev_[l.receiver], l.ev_q32);
+  // The parts in order: part 1's sends, then every new link, into part 0's arrays.
+  int64_t* e0 = parts_[0].e0.data();
+  int64_t* eu = parts_[0].eu.data();
+  int64_t* ev = parts_[0].ev.data();
+  for (uint32_t k = 0; k < n; ++k) {
+    e0[k] = AddSat64(e0[k], parts_[1].e0[k]);
+    eu[k] = AddSat64(eu[k], parts_[1].eu[k]);
+    ev[k] = AddSat64(ev[k], parts_[1].ev[k]);
   }
-  last_links_ = static_cast<int>(needed_);
+  for (const Part& part : parts_) {
+    for (size_t i = 0; i < part.needed; ++i) {
+      const NewLink& l = part.pool[i];
+      e0[l.receiver] = AddSat64(e0[l.receiver], l.e0_q32);
+      eu[l.receiver] = AddSat64(eu[l.receiver], l.eu_q32);
+      ev[l.receiver] = AddSat64(ev[l.receiver], l.ev_q32);
+    }
+  }
+  last_links_ = static_cast<int>(needed);
   // Push down as the solver does: each node's field about its surface's
   // origin, a child adds its parent's, a leaf takes the field at its centroid.
   for (uint32_t k = 0; k < n; ++k) {
     const int32_t* uv = &centre_uv_q16_[2 * size_t{k}];
-    e0_[k] = SubSat64(e0_[k], GradientTerm(eu_[k], ev_[k], uv));
+    e0[k] = SubSat64(e0[k], GradientTerm(eu[k], ev[k], uv));
     const uint32_t parent = h.node_parent[k];
     if (parent != kBakeNoIndex) {
-      e0_[k] = AddSat64(e0_[k], e0_[parent]);
-      eu_[k] = AddSat64(eu_[k], eu_[parent]);
-      ev_[k] = AddSat64(ev_[k], ev_[parent]);
+      e0[k] = AddSat64(e0[k], e0[parent]);
+      eu[k] = AddSat64(eu[k], eu[parent]);
+      ev[k] = AddSat64(ev[k], ev[parent]);
     }
   }
   for (uint32_t k = 0; k < n; ++k) {
     leaf_irradiance_q32[k] =
-        h.leaf(k) ? AddSat64(e0_[k], GradientTerm(eu_[k], ev_[k], &centre_uv_q16_[2 * size_t{k}])) : 0;
+        h.leaf(k) ? AddSat64(e0[k], GradientTerm(eu[k], ev[k], &centre_uv_q16_[2 * size_t{k}])) : 0;
   }
   return Status::Ok();
 }

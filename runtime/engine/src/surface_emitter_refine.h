@@ -19,8 +19,9 @@
 // anything changes. The result is the first-shot irradiance per leaf, which
 // HierarchySolveQ32 then interreflects.
 //
-// Open() allocates; FirstShot() is integer-only and allocation-free. Not
-// thread-safe (scratch).
+// Open() allocates; FirstShot() is integer-only and allocation-free, and
+// spreads the sources' links over the engine's threads when given them. Not
+// thread-safe itself (scratch): one caller at a time.
 #pragma once
 
 #include <cstdint>
@@ -29,6 +30,11 @@
 #include "relight/bake/bake.h"
 #include "relight/base/status.h"
 #include "relight/engine/surface_emitter.h"
+
+namespace relight {
+class EmitterClip3;
+class WorkerPool;
+}  // namespace relight
 
 namespace relight {
 
@@ -43,11 +49,13 @@ class SurfaceEmitterRefine {
   // for every node k (inner nodes 0). kOutOfRange, saying how many it needed,
   // when the refinement needs more new links than the pool holds; the output
   // is then untouched.
+  // `workers` (may be null: all on the caller) share the sending; the
+  // result is the same bits for any thread count.
   Status FirstShot(uint32_t root, const SurfaceEmitterShape& shape, const int64_t* coverage_q32,
-                   int64_t* leaf_irradiance_q32);
+                   int64_t* leaf_irradiance_q32, WorkerPool* workers = nullptr);
   // New links the last successful FirstShot made.
   int last_links() const { return last_links_; }
-  int pool_links() const { return static_cast<int>(pool_.size()); }
+  int pool_links() const { return static_cast<int>(parts_[0].pool.size()); }
 
  private:
   // A link the refinement made: irradiance on `receiver` per unit exitance
@@ -66,18 +74,34 @@ class SurfaceEmitterRefine {
     bool partial;
     int64_t centre[3], radius;  // Bound() of poly
   };
+  // One of the two shares of a placement's sources. FirstShot always cuts
+  // the walk's sources in two, alternately, whatever the thread count, and
+  // adds the shares in order, so the bits never depend on it. A share's
+  // pool holds as many links as the whole placement may make; the
+  // placement is refused when the two together need more.
+  struct Part {
+    std::vector<NewLink> pool;
+    size_t needed = 0;
+    std::vector<int64_t> e0, eu, ev;  // per node: plain sends' light and gradients
+  };
+  static constexpr int kParts = 2;
+  // A job: a source node of the walk, with this bit set where the emitter
+  // cuts it (else the node is wholly inside, with all its subtree).
+  static constexpr uint32_t kPartialJob = 0x80000000u;
   static void Bound(const int64_t (*poly)[3], int count, int64_t centre[3], int64_t* radius);
-  void Send(uint32_t link_side, uint64_t ratio_q32);
-  void SendLink(const Source& source, uint32_t link_side);
-  void SendSubtree(uint32_t node, int64_t (*scratch)[3]);
+  void AddJobs(uint32_t node);
+  void RunPart(int part, const EmitterClip3& clip);
+  void Send(Part& part, uint32_t link_side, uint64_t ratio_q32);
+  void SendLink(Part& part, const Source& source, uint32_t link_side);
   // Sum of F from the receiver's quadrature points to the polygon; with
   // `gradient`, also the least-squares slope of F over them (Q32 per metre).
   // centre, radius: Bound() of the polygon the points are compared with.
   uint64_t SumFactorsQ32(uint32_t receiver, const int64_t (*poly)[3], int count, const int64_t centre[3],
                          int64_t radius, int64_t gradient_q32[2] = nullptr) const;
   bool Far(uint32_t receiver, const int64_t centre[3], int64_t radius) const;
-  void RefineReceiver(uint32_t node, const Source& source, uint64_t visibility_q32, uint64_t reverse_q32);
-  void Add(uint32_t receiver, int64_t e0, int64_t eu, int64_t ev);
+  void RefineReceiver(Part& part, uint32_t node, const Source& source, uint64_t visibility_q32,
+                      uint64_t reverse_q32);
+  void Add(Part& part, uint32_t receiver, int64_t e0, int64_t eu, int64_t ev) const;
   int Corners(uint32_t node, int64_t (*out)[3]) const;
 
   const BakeHierarchy* h_ = nullptr;
@@ -90,10 +114,11 @@ class SurfaceEmitterRefine {
   std::vector<uint8_t> drop_axis_;        // per surface: the normal's largest axis
   std::vector<uint32_t> tree_end_;        // per node that is a root: one past its tree
   std::vector<uint32_t> send_offsets_, send_;  // per source node: link sides it sends through
-  std::vector<int64_t> coverage_mean_q32_, e0_, eu_, ev_;
-  std::vector<NewLink> pool_;
+  std::vector<int64_t> coverage_mean_q32_;
+  Part parts_[kParts];
+  std::vector<uint32_t> jobs_;  // capacity: every node once
+  uint32_t job_count_ = 0;
   uint64_t refine_threshold_q32_ = 0;  // kRefineThresholdQ32
-  size_t needed_ = 0;
   int last_links_ = 0;
 };
 

@@ -62,7 +62,7 @@ Status SurfaceEmitters::CheckSlot(int slot) const {
   return Status::Ok();
 }
 
-Status SurfaceEmitters::Place(int slot, const SurfaceEmitterShape& shape) {
+Status SurfaceEmitters::Place(int slot, const SurfaceEmitterShape& shape, WorkerPool* pool) {
   RELIGHT_RETURN_IF_ERROR(CheckSlot(slot));
   const std::vector<std::string>& names = bake_->mesh.surface_names;
   uint32_t surface = 0;
@@ -81,7 +81,7 @@ Status SurfaceEmitters::Place(int slot, const SurfaceEmitterShape& shape) {
   const bool refined = shape.method == SurfaceEmitterMethod::kAdaptiveRefine;
   if (refined) {
     RELIGHT_RETURN_IF_ERROR(refine_.FirstShot(surface_root_[surface], shape, coverage_scratch_.data(),
-                                              first_shot_scratch_.data()));
+                                              first_shot_scratch_.data(), pool));
   }
   Slot& s = slots_[slot];
   s.moved = s.placed;

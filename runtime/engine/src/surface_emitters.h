@@ -48,7 +48,8 @@ class SurfaceEmitters {
   // (no surface of that name), kInvalidArgument (slot, or the shape: off the
   // plane, not convex, not on the surface), kOutOfRange (adaptive refine
   // needs more new links than its pool holds). On error nothing changes.
-  Status Place(int slot, const SurfaceEmitterShape& shape);
+  // Adaptive refine's first shot runs on `pool` (may be null: this thread).
+  Status Place(int slot, const SurfaceEmitterShape& shape, WorkerPool* pool);
   // LightQ12 cd/m^2 per channel, >= 0. kInvalidArgument for a bad slot or value.
   Status SetLuminance(int slot, const LightQ12 rgb[3]);
   Status Remove(int slot);
