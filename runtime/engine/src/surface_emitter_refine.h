@@ -32,11 +32,9 @@
 #include "relight/engine/surface_emitter.h"
 
 namespace relight {
+
 class EmitterClip3;
 class WorkerPool;
-}  // namespace relight
-
-namespace relight {
 
 class SurfaceEmitterRefine {
  public:
@@ -91,8 +89,9 @@ class SurfaceEmitterRefine {
   static void Bound(const int64_t (*poly)[3], int count, int64_t centre[3], int64_t* radius);
   void AddJobs(uint32_t node);
   void RunPart(int part, const EmitterClip3& clip);
-  void Send(Part& part, uint32_t link_side, uint64_t ratio_q32);
-  void SendLink(Part& part, const Source& source, uint32_t link_side);
+  // The sending reads the tables and writes only `part`: two parts run at once.
+  void Send(Part& part, uint32_t link_side, uint64_t ratio_q32) const;
+  void SendLink(Part& part, const Source& source, uint32_t link_side) const;
   // Sum of F from the receiver's quadrature points to the polygon; with
   // `gradient`, also the least-squares slope of F over them (Q32 per metre).
   // centre, radius: Bound() of the polygon the points are compared with.
@@ -100,7 +99,7 @@ class SurfaceEmitterRefine {
                          int64_t radius, int64_t gradient_q32[2] = nullptr) const;
   bool Far(uint32_t receiver, const int64_t centre[3], int64_t radius) const;
   void RefineReceiver(Part& part, uint32_t node, const Source& source, uint64_t visibility_q32,
-                      uint64_t reverse_q32);
+                      uint64_t reverse_q32) const;
   void Add(Part& part, uint32_t receiver, int64_t e0, int64_t eu, int64_t ev) const;
   int Corners(uint32_t node, int64_t (*out)[3]) const;
 

@@ -23,7 +23,7 @@ void SurfaceEmitterRefine::Add(Part& part, uint32_t receiver, int64_t e0, int64_
   ++part.needed;  // past the pool: only counts what the placement would need
 }
 
-void SurfaceEmitterRefine::Send(Part& part, uint32_t link_side, uint64_t ratio_q32) {
+void SurfaceEmitterRefine::Send(Part& part, uint32_t link_side, uint64_t ratio_q32) const {
   const BakeHierarchy& h = *h_;
   const uint32_t link = link_side >> 1;
   const bool from_p = (link_side & 1) != 0;
@@ -40,7 +40,7 @@ void SurfaceEmitterRefine::Send(Part& part, uint32_t link_side, uint64_t ratio_q
 // Below a receiver the stored link treated as one node: each child gets the
 // emitter's light at its own points, with the link's visibility (route (a)).
 void SurfaceEmitterRefine::RefineReceiver(Part& part, uint32_t node, const Source& source,
-                                          uint64_t visibility_q32, uint64_t reverse_q32) {
+                                          uint64_t visibility_q32, uint64_t reverse_q32) const {
   const BakeHierarchy& h = *h_;
   if (!h.leaf(node) && ((reverse_q32 * source.coverage_q32) >> 32) >= refine_threshold_q32_) {
     const uint32_t first = h.node_first_child[node];
@@ -64,7 +64,7 @@ void SurfaceEmitterRefine::RefineReceiver(Part& part, uint32_t node, const Sourc
 
 // One link of an emitting node: FE's share where it carries little of the
 // emitter's light (BF's F x B below the threshold), else new factors.
-void SurfaceEmitterRefine::SendLink(Part& part, const Source& source, uint32_t link_side) {
+void SurfaceEmitterRefine::SendLink(Part& part, const Source& source, uint32_t link_side) const {
   const BakeHierarchy& h = *h_;
   const uint32_t link = link_side >> 1;
   const bool from_p = (link_side & 1) != 0;
