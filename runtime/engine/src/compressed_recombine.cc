@@ -6,8 +6,8 @@
 #include <cstdint>
 
 #include "compressed_recombine_avx2.h"
-#include "compressed_tiles.h"
 #include "compressed_recombine_vnni.h"
+#include "compressed_tiles.h"
 #include "recombine.h"
 #include "recombine_dispatch.h"
 #include "relight/base/status.h"
