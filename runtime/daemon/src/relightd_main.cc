@@ -161,8 +161,8 @@ int main(int argc, char** argv) {
   const relight::daemon::DaemonStats stats = daemon.stats();
   const auto ms = [](int64_t us) { return static_cast<double>(us) / 1e3; };
   relight::Log(relight::LogLevel::kInfo,
-               "relightd: %lld frames (%lld drawn, the rest unchanged and sent again), %lld ticks skipped, last "
-               "write-to-frame latency %.1f ms%s",
+               "relightd: %lld frames, %lld of them drawn (the rest unchanged, sent again), %lld ticks skipped, "
+               "last write-to-frame latency %.1f ms%s",
                static_cast<long long>(stats.frames), static_cast<long long>(stats.renders),
                static_cast<long long>(stats.ticks_skipped), stats.last_latency_us / 1e3,
                g_stop.load() ? " (stopped by signal)" : "");
