@@ -9,7 +9,7 @@
 #include "compressed_recombine_interleave.h"
 
 namespace relight {
-using cpca_simd::PackPair;
+using cpca_simd::PairMultipliers;
 using cpca_simd::StoreInterleaved;
 
 __attribute__((target("avx2"))) void CompressedClusterAvx2Q12(const int16_t* w, uint32_t n,
@@ -18,13 +18,11 @@ __attribute__((target("avx2"))) void CompressedClusterAvx2Q12(const int16_t* w, 
                                                               int32_t* out) {
   const uint32_t pairs = components / 2;
   const bool odd = components % 2 != 0;
+  int32_t packed[3][kMaxCompressedComponents / 2 + 1];
+  PairMultipliers(m, components, packed);
   __m256i k[3][kMaxCompressedComponents / 2 + 1];
   for (int ch = 0; ch < 3; ++ch) {
-    for (uint32_t p = 0; p < pairs; ++p) {
-      k[ch][p] = _mm256_set1_epi32(PackPair(m.k[ch * components + 2 * p], m.k[ch * components + 2 * p + 1]));
-    }
-    // An odd count's last component: its weights zero-extended to (w, 0) pairs.
-    if (odd) k[ch][pairs] = _mm256_set1_epi32(PackPair(m.k[ch * components + components - 1], 0));
+    for (uint32_t p = 0; p < (components + 1) / 2; ++p) k[ch][p] = _mm256_set1_epi32(packed[ch][p]);
   }
   __m256i half[3], mean[3];
   __m128i shift[3];

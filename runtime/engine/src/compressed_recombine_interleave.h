@@ -1,4 +1,4 @@
-// The 256-bit RGB interleave shared by the AVX2 and AVX-VNNI bodies of the
+// The 256-bit RGB interleave and the multiplier pairs shared by the AVX2 and AVX-VNNI bodies of the
 // compressed recombination (compressed_recombine_avx2.cc,
 // compressed_recombine_vnni.cc). x86-64 SIMD files only: include it inside
 // their architecture guard.
@@ -7,6 +7,8 @@
 #include <immintrin.h>
 
 #include <cstdint>
+
+#include "compressed_recombine.h"
 
 namespace relight {
 namespace cpca_simd {
@@ -32,6 +34,20 @@ __attribute__((target("avx2"), always_inline)) inline void StoreInterleaved(__m2
 inline int32_t PackPair(int16_t a, int16_t b) {
   return static_cast<int32_t>((static_cast<uint32_t>(static_cast<uint16_t>(b)) << 16) |
                               static_cast<uint16_t>(a));
+}
+
+// The multipliers of every pair, and of an odd count's last component
+// paired with 0 (its weights are zero-extended), as the int32 lanes madd /
+// vpdpwssd take: packed[ch][p] (compressed_tiles.h's pair order).
+inline void PairMultipliers(const ClusterMultipliers& m, uint32_t components,
+                            int32_t (*packed)[kMaxCompressedComponents / 2 + 1]) {
+  const uint32_t pairs = components / 2;
+  for (int ch = 0; ch < 3; ++ch) {
+    for (uint32_t p = 0; p < pairs; ++p) {
+      packed[ch][p] = PackPair(m.k[ch * components + 2 * p], m.k[ch * components + 2 * p + 1]);
+    }
+    if (components % 2 != 0) packed[ch][pairs] = PackPair(m.k[ch * components + components - 1], 0);
+  }
 }
 
 }  // namespace cpca_simd

@@ -21,7 +21,7 @@
 namespace relight {
 namespace {
 
-using cpca_simd::PackPair;
+using cpca_simd::PairMultipliers;
 
 // Permute indices (vpermt2d: 0..15 the first source, 16..31 the second).
 struct Indices {
@@ -56,20 +56,6 @@ RELIGHT_TARGET_AVX512_VNNI inline void StoreRgb(const __m512i* rgb, uint32_t cou
     } else if (left > 0) {
       _mm512_mask_storeu_epi32(out + 16 * v, static_cast<__mmask16>((1u << left) - 1), o);
     }
-  }
-}
-
-// The multipliers of every pair, and of an odd count's last component
-// paired with 0 (its weights are zero-extended), as the int32 lanes
-// vpdpwssd takes: packed[ch][p].
-void PairMultipliers(const ClusterMultipliers& m, uint32_t components,
-                     int32_t (*packed)[kMaxCompressedComponents / 2 + 1]) {
-  const uint32_t pairs = components / 2;
-  for (int ch = 0; ch < 3; ++ch) {
-    for (uint32_t p = 0; p < pairs; ++p) {
-      packed[ch][p] = PackPair(m.k[ch * components + 2 * p], m.k[ch * components + 2 * p + 1]);
-    }
-    if (components % 2 != 0) packed[ch][pairs] = PackPair(m.k[ch * components + components - 1], 0);
   }
 }
 

@@ -20,7 +20,6 @@
 namespace relight {
 namespace {
 
-constexpr int64_t kOne = int64_t{1} << 32;
 constexpr int kStackNodes = 1024;
 // Receivers further than this many of their radii from the polygon take the
 // factor at their centroid only.

@@ -83,6 +83,7 @@ class SurfaceEmitterRefine {
     std::vector<int64_t> e0, eu, ev;  // per node: plain sends' light and gradients
   };
   static constexpr int kParts = 2;
+  static constexpr int64_t kOne = int64_t{1} << 32;  // a covered fraction or ratio of 1, Q32
   // A job: a source node of the walk, with this bit set where the emitter
   // cuts it (else the node is wholly inside, with all its subtree).
   static constexpr uint32_t kPartialJob = 0x80000000u;

@@ -12,11 +12,6 @@
 #include "surface_emitter_refine.h"
 
 namespace relight {
-namespace {
-
-constexpr int64_t kOne = int64_t{1} << 32;
-
-}  // namespace
 
 void SurfaceEmitterRefine::Add(Part& part, uint32_t receiver, int64_t e0, int64_t eu, int64_t ev) const {
   if (part.needed < part.pool.size()) part.pool[part.needed] = {receiver, e0, eu, ev};
