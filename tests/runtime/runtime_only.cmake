@@ -8,6 +8,11 @@ relight_test(fixed_math_test SOURCES fixed_math_test.cc LIBS relight_base)
 relight_test(tone_map_test SOURCES tone_map_test.cc LIBS relight_engine)
 relight_test(bake_io_test SOURCES bake_io_test.cc bake_hierarchy_io_test.cc
              LIBS relight_engine PkgConfig::ZSTD ZLIB::ZLIB)
+# The renderer's RGBA -> RGB row copy has a NEON body; it needs no OSMesa, so
+# it is built here from its source to run on the target.
+relight_test(rgba_rows_test SOURCES rgba_rows_test.cc ${PROJECT_SOURCE_DIR}/runtime/render/src/rgba_rows.cc
+             LIBS relight_base)
+target_include_directories(rgba_rows_test PRIVATE ${PROJECT_SOURCE_DIR}/runtime/render/src)
 
 # The integer-only layers' object code, for the target's instruction set.
 if(CMAKE_SYSTEM_PROCESSOR MATCHES "x86_64|AMD64|aarch64|arm64")

@@ -16,6 +16,7 @@
 #include <limits>
 
 #include "camera.h"
+#include "rgba_rows.h"
 
 namespace relight {
 namespace {
@@ -45,30 +46,6 @@ Status CheckGl(const char* where) {
 }
 
 GLsizeiptr Bytes(size_t count, size_t elem_size) { return static_cast<GLsizeiptr>(count * elem_size); }
-
-// One row of RGBA bytes -> RGB bytes. Four pixels a step as 32-bit words
-// (three stores of 12 bytes' worth instead of twelve byte stores: a frame is
-// 0.9 M pixels, and byte by byte this copy took ~1 ms of every frame).
-// Byte order: memcpy words and shifts in little-endian lane order, so the
-// step is written for little-endian targets (x86-64, aarch64 Linux) and the
-// rest byte by byte.
-void RgbaRowToRgb(const uint8_t* src, size_t pixels, uint8_t* dst) {
-  size_t x = 0;
-  if constexpr (__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__) {
-    for (; x + 4 <= pixels; x += 4) {
-      uint32_t p[4];
-      std::memcpy(p, src + 4 * x, sizeof(p));
-      const uint32_t out[3] = {(p[0] & 0xFFFFFFu) | (p[1] << 24), ((p[1] >> 8) & 0xFFFFu) | (p[2] << 16),
-                               ((p[2] >> 16) & 0xFFu) | (p[3] << 8)};
-      std::memcpy(dst + 3 * x, out, sizeof(out));
-    }
-  }
-  for (; x < pixels; ++x) {
-    dst[3 * x + 0] = src[4 * x + 0];
-    dst[3 * x + 1] = src[4 * x + 1];
-    dst[3 * x + 2] = src[4 * x + 2];
-  }
-}
 
 }  // namespace
 
@@ -309,7 +286,7 @@ Status OsMesaFrame::Draw(const uint8_t* vertex_rgb8, uint8_t* out_rgb8) {
   // OSMesa's buffer is bottom-up (OSMESA_Y_UP = 1); the output is top-down.
   const size_t w = static_cast<size_t>(m.width);
   for (int y = 0; y < m.height; ++y) {
-    RgbaRowToRgb(m.color_rgba.data() + static_cast<size_t>(m.height - 1 - y) * w * 4, w,
+    render::RgbaRowToRgb(m.color_rgba.data() + static_cast<size_t>(m.height - 1 - y) * w * 4, w,
                  out_rgb8 + static_cast<size_t>(y) * w * 3);
   }
   return Status::Ok();
