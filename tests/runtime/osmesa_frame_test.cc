@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <string>
+#include <random>
 #include <vector>
 
 #include "common/image_compare.h"
@@ -518,6 +519,83 @@ TEST(OsMesaFrameTest, RoomFromInsideCoversEveryPixelAndReportsFrameTime) {
               "DrawTriangleIds %.1f ms/frame (mean of %d)\n",
               triangles, vertices, kWidth, kHeight, threads != nullptr ? threads : "(unset)", draw_ms, ids_ms,
               kFrames);
+}
+
+// Hidden-triangle culling (visible_triangles.h) changes no pixel: a room
+// with a box in it, seen from several places inside, each camera drawn three
+// times with new colours (all triangles, then the ID pass and the shown
+// ones, then the shown ones) against a frame that never culls; a picking
+// pass at a new camera hands its list to the next Draw.
+TEST(OsMesaFrameTest, HiddenTriangleCullingDrawsFewerTrianglesAndTheSamePixels) {
+  BakeMesh mesh = RoomMesh(6, 4, 3, 0.2);
+  const BakeMesh box = RoomMesh(1, 1, 1.2, 0.1);
+  const uint32_t offset = mesh.vertex_count();
+  for (uint32_t v = 0; v < box.vertex_count(); ++v) {
+    const double shift[3] = {2.5, 1.5, 0.0};
+    AddVertex(&mesh, box.positions[v * 3] / 65536.0 + shift[0], box.positions[v * 3 + 1] / 65536.0 + shift[1],
+              box.positions[v * 3 + 2] / 65536.0 + shift[2]);
+  }
+  for (uint32_t i : box.triangles) mesh.triangles.push_back(i + offset);
+  const uint32_t triangles = mesh.triangle_count();
+  std::vector<uint8_t> colours(static_cast<size_t>(mesh.vertex_count()) * 3);
+  std::mt19937 rng(11);
+
+  constexpr int kFrameW = 320, kFrameH = 200;
+  OsMesaFrame culled, plain;
+  ASSERT_TRUE(culled.Init(kFrameW, kFrameH, mesh).ok());
+  ASSERT_TRUE(plain.Init(kFrameW, kFrameH, mesh).ok());
+  plain.SetHiddenTriangleCulling(false);
+  std::vector<uint8_t> a(static_cast<size_t>(kFrameW) * kFrameH * 3), b(a.size());
+  const float places[4][6] = {{0.5f, 0.5f, 1.6f, 5, 3, 0.8f},
+                              {5.5f, 3.5f, 2.5f, 2.8f, 1.8f, 0.3f},
+                              {3.0f, 0.3f, 1.0f, 3.0f, 3.9f, 0.6f},
+                              {1.0f, 3.0f, 0.2f, 3.2f, 1.6f, 2.9f}};
+  uint32_t fewest = triangles;
+  for (const auto& p : places) {
+    CameraView view;
+    for (int i = 0; i < 3; ++i) {
+      view.position[i] = p[i];
+      view.target[i] = p[3 + i];
+    }
+    view.fov_y_deg = 60;
+    culled.SetCamera(view);
+    plain.SetCamera(view);
+    for (int draw = 0; draw < 3; ++draw) {
+      for (uint8_t& c : colours) c = static_cast<uint8_t>(64 + rng() % 190);
+      ASSERT_TRUE(culled.Draw(colours.data(), a.data()).ok());
+      ASSERT_TRUE(plain.Draw(colours.data(), b.data()).ok());
+      ASSERT_EQ(a, b) << "camera at " << p[0] << ", " << p[1] << ", " << p[2] << ", draw " << draw;
+      EXPECT_EQ(plain.last_drawn_triangles(), triangles);
+      if (draw == 0) {
+        EXPECT_EQ(culled.last_drawn_triangles(), triangles);  // the first at a camera draws all
+      } else {
+        EXPECT_LT(culled.last_drawn_triangles(), triangles);  // the wall behind the camera is hidden
+        EXPECT_GT(culled.last_drawn_triangles(), 0u);
+      }
+    }
+    fewest = std::min(fewest, culled.last_drawn_triangles());
+    // The same camera again keeps the list; a picking pass at a new one makes it.
+    culled.SetCamera(view);
+    ASSERT_TRUE(culled.Draw(colours.data(), a.data()).ok());
+    EXPECT_LT(culled.last_drawn_triangles(), triangles);
+  }
+  std::printf("Culling: %u triangles, fewest drawn %u\n", triangles, fewest);
+
+  CameraView view;
+  view.position[0] = 4.0f;
+  view.position[1] = 2.0f;
+  view.position[2] = 2.8f;
+  view.target[0] = 3.0f;
+  view.target[1] = 2.0f;
+  view.target[2] = 0.0f;
+  culled.SetCamera(view);
+  plain.SetCamera(view);
+  std::vector<uint32_t> ids(static_cast<size_t>(kFrameW) * kFrameH);
+  ASSERT_TRUE(culled.DrawTriangleIds(ids.data()).ok());
+  ASSERT_TRUE(culled.Draw(colours.data(), a.data()).ok());
+  ASSERT_TRUE(plain.Draw(colours.data(), b.data()).ok());
+  EXPECT_EQ(a, b);
+  EXPECT_LT(culled.last_drawn_triangles(), triangles);
 }
 
 // --- PNG files

@@ -17,6 +17,7 @@
 
 #include "camera.h"
 #include "rgba_rows.h"
+#include "visible_triangles.h"
 
 namespace relight {
 namespace {
@@ -66,6 +67,21 @@ struct OsMesaFrame::Impl {
   GLuint id_position_vbo = 0;
   GLuint id_color_vbo = 0;
 
+  // Hidden-triangle culling (visible_triangles.h): at the second Draw with
+  // an unchanged camera an ID pass finds the triangles the camera shows, and
+  // later draws send only those (same pixels, about a third of the stage's
+  // triangles). A camera that moves every frame never pays for the ID pass.
+  // All arrays are sized at Init: nothing is allocated per frame.
+  GLuint visible_index_vbo = 0;
+  std::vector<uint32_t> triangles;        // the full index list, 3 per triangle
+  std::vector<uint32_t> visible_indices;  // room for all of them
+  std::vector<uint8_t> triangle_seen;     // scratch, one per triangle
+  uint32_t visible_count = 0;
+  bool visible_valid = false;  // visible_index_vbo holds the list for the current camera
+  bool cull_hidden = true;
+  int draws_at_camera = 0;
+  uint32_t last_drawn_triangles = 0;
+
   CameraView view;
   render::CameraFrame camera;
   render::CameraFrame drawn_camera;  // the camera of the last draw (for unprojection)
@@ -79,7 +95,10 @@ struct OsMesaFrame::Impl {
       OSMesaDestroyContext(ctx);
       ctx = nullptr;
     }
-    position_vbo = color_vbo = index_vbo = id_position_vbo = id_color_vbo = 0;
+    position_vbo = color_vbo = index_vbo = id_position_vbo = id_color_vbo = visible_index_vbo = 0;
+    visible_valid = false;
+    draws_at_camera = 0;
+    last_drawn_triangles = 0;
     width = height = 0;
     has_drawn = false;
   }
@@ -109,6 +128,8 @@ struct OsMesaFrame::Impl {
 
   Status Upload(const BakeMesh& mesh);
   Status Finish(const char* pass);
+  Status DrawIdPass();
+  Status FindVisibleTriangles();
 };
 
 Status OsMesaFrame::Impl::Upload(const BakeMesh& mesh) {
@@ -143,13 +164,14 @@ Status OsMesaFrame::Impl::Upload(const BakeMesh& mesh) {
     }
   }
 
-  GLuint ids[5];
-  glGenBuffers(5, ids);
+  GLuint ids[6];
+  glGenBuffers(6, ids);
   position_vbo = ids[0];
   color_vbo = ids[1];
   index_vbo = ids[2];
   id_position_vbo = ids[3];
   id_color_vbo = ids[4];
+  visible_index_vbo = ids[5];
   glBindBuffer(GL_ARRAY_BUFFER, position_vbo);
   glBufferData(GL_ARRAY_BUFFER, Bytes(pos.size(), sizeof(GLfloat)), pos.data(), GL_STATIC_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, color_vbo);
@@ -162,7 +184,12 @@ Status OsMesaFrame::Impl::Upload(const BakeMesh& mesh) {
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, index_vbo);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, Bytes(mesh.triangles.size(), sizeof(GLuint)),
                mesh.triangles.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, visible_index_vbo);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, Bytes(mesh.triangles.size(), sizeof(GLuint)), nullptr, GL_DYNAMIC_DRAW);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+  triangles = mesh.triangles;
+  visible_indices.assign(mesh.triangles.size(), 0);
+  triangle_seen.assign(triangle_count, 0);
   return CheckGl("uploading the mesh");
 }
 
@@ -172,6 +199,39 @@ Status OsMesaFrame::Impl::Finish(const char* pass) {
   RELIGHT_RETURN_IF_ERROR(CheckGl(pass));
   drawn_camera = camera;
   has_drawn = true;
+  return Status::Ok();
+}
+
+// Draws every triangle in its ID colour (flat: exact codes); color_rgba then
+// holds the codes, bottom row first.
+Status OsMesaFrame::Impl::DrawIdPass() {
+  LoadMatrices();
+  glShadeModel(GL_FLAT);
+  glClearColor(0, 0, 0, 0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  if (triangle_count > 0) {
+    glBindBuffer(GL_ARRAY_BUFFER, id_color_vbo);
+    glColorPointer(3, GL_UNSIGNED_BYTE, 0, nullptr);
+    glBindBuffer(GL_ARRAY_BUFFER, id_position_vbo);
+    glVertexPointer(3, GL_FLOAT, 0, nullptr);
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(triangle_count * 3));
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+  }
+  glShadeModel(GL_SMOOTH);
+  return Finish("the ID pass");
+}
+
+// From the ID pass in color_rgba: the shown triangles into visible_index_vbo.
+Status OsMesaFrame::Impl::FindVisibleTriangles() {
+  visible_count = render::CompactVisibleTriangles(color_rgba.data(), static_cast<size_t>(width) * height,
+                                                  triangles.data(), triangle_count, triangle_seen.data(),
+                                                  visible_indices.data());
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, visible_index_vbo);
+  glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, Bytes(size_t{visible_count} * 3, sizeof(GLuint)),
+                  visible_indices.data());
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+  RELIGHT_RETURN_IF_ERROR(CheckGl("uploading the visible triangles"));
+  visible_valid = true;
   return Status::Ok();
 }
 
@@ -256,9 +316,19 @@ Status OsMesaFrame::Init(int width, int height, const BakeMesh& mesh) {
 }
 
 void OsMesaFrame::SetCamera(const CameraView& camera) {
-  impl_->view = camera;
-  if (impl_->ctx != nullptr) impl_->UpdateCamera();
+  Impl& m = *impl_;
+  const bool same = std::memcmp(&m.view, &camera, sizeof(CameraView)) == 0;
+  m.view = camera;
+  if (m.ctx != nullptr) m.UpdateCamera();
+  if (!same) {
+    m.visible_valid = false;
+    m.draws_at_camera = 0;
+  }
 }
+
+void OsMesaFrame::SetHiddenTriangleCulling(bool on) { impl_->cull_hidden = on; }
+
+uint32_t OsMesaFrame::last_drawn_triangles() const { return impl_->last_drawn_triangles; }
 
 Status OsMesaFrame::Draw(const uint8_t* vertex_rgb8, uint8_t* out_rgb8) {
   Impl& m = *impl_;
@@ -266,22 +336,30 @@ Status OsMesaFrame::Draw(const uint8_t* vertex_rgb8, uint8_t* out_rgb8) {
     return Status(StatusCode::kInvalidArgument, "render: Draw: null buffer");
   }
   RELIGHT_RETURN_IF_ERROR(m.MakeCurrent());
+  if (m.cull_hidden && !m.visible_valid && m.draws_at_camera >= 1 && m.triangle_count > 0) {
+    RELIGHT_RETURN_IF_ERROR(m.DrawIdPass());
+    RELIGHT_RETURN_IF_ERROR(m.FindVisibleTriangles());
+  }
+  const bool culled = m.cull_hidden && m.visible_valid;
+  const uint32_t drawn = culled ? m.visible_count : m.triangle_count;
   m.LoadMatrices();
   glShadeModel(GL_SMOOTH);
   glClearColor(kBackgroundGrey, kBackgroundGrey, kBackgroundGrey, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  if (m.triangle_count > 0) {
+  if (drawn > 0) {
     glBindBuffer(GL_ARRAY_BUFFER, m.color_vbo);
     glBufferSubData(GL_ARRAY_BUFFER, 0, Bytes(m.vertex_count, 3), vertex_rgb8);
     glColorPointer(3, GL_UNSIGNED_BYTE, 0, nullptr);
     glBindBuffer(GL_ARRAY_BUFFER, m.position_vbo);
     glVertexPointer(3, GL_FLOAT, 0, nullptr);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.index_vbo);
-    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(m.triangle_count * 3), GL_UNSIGNED_INT, nullptr);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, culled ? m.visible_index_vbo : m.index_vbo);
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(drawn * 3), GL_UNSIGNED_INT, nullptr);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
   }
   RELIGHT_RETURN_IF_ERROR(m.Finish("Draw"));
+  m.last_drawn_triangles = drawn;
+  if (m.draws_at_camera < 2) ++m.draws_at_camera;
 
   // OSMesa's buffer is bottom-up (OSMESA_Y_UP = 1); the output is top-down.
   const size_t w = static_cast<size_t>(m.width);
@@ -296,32 +374,18 @@ Status OsMesaFrame::DrawTriangleIds(uint32_t* out_ids) {
   Impl& m = *impl_;
   if (out_ids == nullptr) return Status(StatusCode::kInvalidArgument, "render: DrawTriangleIds: null buffer");
   RELIGHT_RETURN_IF_ERROR(m.MakeCurrent());
-  m.LoadMatrices();
-  // Flat shading: each pixel gets exactly its triangle's code, no interpolation.
-  glShadeModel(GL_FLAT);
-  glClearColor(0, 0, 0, 0);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  if (m.triangle_count > 0) {
-    glBindBuffer(GL_ARRAY_BUFFER, m.id_color_vbo);
-    glColorPointer(3, GL_UNSIGNED_BYTE, 0, nullptr);
-    glBindBuffer(GL_ARRAY_BUFFER, m.id_position_vbo);
-    glVertexPointer(3, GL_FLOAT, 0, nullptr);
-    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(m.triangle_count * 3));
-    glBindBuffer(GL_ARRAY_BUFFER, 0);
-  }
-  glShadeModel(GL_SMOOTH);
-  RELIGHT_RETURN_IF_ERROR(m.Finish("DrawTriangleIds"));
-
+  RELIGHT_RETURN_IF_ERROR(m.DrawIdPass());
   const size_t w = static_cast<size_t>(m.width);
   for (int y = 0; y < m.height; ++y) {
     const GLubyte* src = m.color_rgba.data() + static_cast<size_t>(m.height - 1 - y) * w * 4;
     uint32_t* dst = out_ids + static_cast<size_t>(y) * w;
     for (size_t x = 0; x < w; ++x) {
-      const uint32_t code = static_cast<uint32_t>(src[x * 4 + 0]) | static_cast<uint32_t>(src[x * 4 + 1]) << 8 |
-                            static_cast<uint32_t>(src[x * 4 + 2]) << 16;
+      const uint32_t code = render::TriangleCode(src + x * 4);
       dst[x] = code == 0 ? kNoTriangle : code - 1;
     }
   }
+  // The pass is the culling's ID pass too: keep its list for this camera.
+  if (m.cull_hidden && m.triangle_count > 0) return m.FindVisibleTriangles();
   return Status::Ok();
 }
 

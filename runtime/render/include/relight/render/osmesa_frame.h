@@ -38,6 +38,12 @@ class OsMesaFrame {
   Status Draw(const uint8_t* vertex_rgb8, uint8_t* out_rgb8);
   // Triangle index per pixel (top row first), 0xFFFFFFFF where nothing is drawn.
   Status DrawTriangleIds(uint32_t* out_ids);
+  // Hidden-triangle culling, on by default: from the second Draw at an
+  // unchanged camera on, only the triangles an ID pass found shown there are
+  // drawn; the frames are bit-identical either way (src/visible_triangles.h).
+  void SetHiddenTriangleCulling(bool on);
+  // Triangles the last Draw sent to llvmpipe (all of them, or the shown ones).
+  uint32_t last_drawn_triangles() const;
   // World point (metres) under pixel (x, y), from the depth buffer of the last
   // draw; kNotFound where the pixel shows background.
   Status UnprojectPixel(int x, int y, float out_world[3]);
