@@ -26,6 +26,8 @@ class FramePipeline {
   // The last Render's parts, microseconds: Engine::Update, then tone map + draw.
   int64_t last_update_us() const { return last_update_us_; }
   int64_t last_draw_us() const { return last_draw_us_; }
+  // Triangles the last draw sent (all, or those the camera shows: OsMesaFrame).
+  uint32_t last_drawn_triangles() const { return frame_.last_drawn_triangles(); }
 
   const uint8_t* pixels() const { return pixels_.data(); }
   int width() const { return frame_.width(); }

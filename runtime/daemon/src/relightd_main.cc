@@ -176,6 +176,9 @@ int main(int argc, char** argv) {
                  ms(r.QuantileUs(990)), ms(r.max_us()), ms(stats.update_times.QuantileUs(500)),
                  ms(stats.update_times.QuantileUs(990)), ms(stats.draw_times.QuantileUs(500)),
                  ms(stats.draw_times.QuantileUs(990)));
+    relight::Log(relight::LogLevel::kInfo,
+                 "relightd: the last frame drew %u of the mesh's %u triangles (the rest hidden at its camera)",
+                 stats.drawn_triangles, stats.mesh_triangles);
   }
   if (!st.ok()) return Fail(st, 1);
   return 0;
