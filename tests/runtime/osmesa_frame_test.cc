@@ -442,6 +442,17 @@ BakeMesh RoomMesh(double sx, double sy, double sz, double cell_m) {
   return mesh;
 }
 
+// A camera at (p[0], p[1], p[2]) m looking at (p[3], p[4], p[5]) m.
+CameraView ViewFrom(const float (&p)[6], float fov_y_deg) {
+  CameraView view;
+  for (int i = 0; i < 3; ++i) {
+    view.position[i] = p[i];
+    view.target[i] = p[3 + i];
+  }
+  view.fov_y_deg = fov_y_deg;
+  return view;
+}
+
 // Not a timed assertion: it checks full coverage from inside a closed room
 // and prints the frame time for the ~50k-triangle, 1280x720 case.
 TEST(OsMesaFrameTest, RoomFromInsideCoversEveryPixelAndReportsFrameTime) {
@@ -461,15 +472,7 @@ TEST(OsMesaFrameTest, RoomFromInsideCoversEveryPixelAndReportsFrameTime) {
   constexpr int kWidth = 1280, kHeight = 720;
   OsMesaFrame frame;
   ASSERT_TRUE(frame.Init(kWidth, kHeight, mesh).ok());
-  CameraView view;
-  view.position[0] = 1;
-  view.position[1] = 1;
-  view.position[2] = 1.6f;
-  view.target[0] = 5;
-  view.target[1] = 3;
-  view.target[2] = 1.0f;
-  view.fov_y_deg = 60;
-  frame.SetCamera(view);
+  frame.SetCamera(ViewFrom({1, 1, 1.6f, 5, 3, 1.0f}, 60));
 
   std::vector<uint8_t> rgb(static_cast<size_t>(kWidth) * kHeight * 3);
   std::vector<uint32_t> ids(static_cast<size_t>(kWidth) * kHeight);
@@ -552,12 +555,7 @@ TEST(OsMesaFrameTest, HiddenTriangleCullingDrawsFewerTrianglesAndTheSamePixels) 
                               {1.0f, 3.0f, 0.2f, 3.2f, 1.6f, 2.9f}};
   uint32_t fewest = triangles;
   for (const auto& p : places) {
-    CameraView view;
-    for (int i = 0; i < 3; ++i) {
-      view.position[i] = p[i];
-      view.target[i] = p[3 + i];
-    }
-    view.fov_y_deg = 60;
+    const CameraView view = ViewFrom(p, 60);
     culled.SetCamera(view);
     plain.SetCamera(view);
     for (int draw = 0; draw < 3; ++draw) {
@@ -581,15 +579,9 @@ TEST(OsMesaFrameTest, HiddenTriangleCullingDrawsFewerTrianglesAndTheSamePixels) 
   }
   std::printf("Culling: %u triangles, fewest drawn %u\n", triangles, fewest);
 
-  CameraView view;
-  view.position[0] = 4.0f;
-  view.position[1] = 2.0f;
-  view.position[2] = 2.8f;
-  view.target[0] = 3.0f;
-  view.target[1] = 2.0f;
-  view.target[2] = 0.0f;
-  culled.SetCamera(view);
-  plain.SetCamera(view);
+  const CameraView above = ViewFrom({4.0f, 2.0f, 2.8f, 3.0f, 2.0f, 0.0f}, 50);
+  culled.SetCamera(above);
+  plain.SetCamera(above);
   std::vector<uint32_t> ids(static_cast<size_t>(kFrameW) * kFrameH);
   ASSERT_TRUE(culled.DrawTriangleIds(ids.data()).ok());
   ASSERT_TRUE(culled.Draw(colours.data(), a.data()).ok());

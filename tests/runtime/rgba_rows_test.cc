@@ -1,13 +1,13 @@
 // The RGBA -> RGB row copy (rgba_rows.h): the shuffle path against the byte
 // loop on every row length that leaves a loop tail, and nothing written past
 // the row's end (the 16-byte stores overrun within the row only).
+#include "rgba_rows.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <random>
 #include <vector>
-
-#include "rgba_rows.h"
 
 namespace relight::render {
 namespace {
@@ -32,7 +32,8 @@ TEST(RgbaRows, ShuffleMatchesTheByteLoopAndStaysInsideTheRow) {
       ASSERT_EQ(ref[3 * i + 1], src[4 * i + 1]);
       ASSERT_EQ(ref[3 * i + 2], src[4 * i + 2]);
     }
-    for (size_t i = 3 * n; i < fast.size(); ++i) ASSERT_EQ(fast[i], kGuard) << n << " pixels, byte " << i;
+    for (size_t i = 3 * n; i < fast.size(); ++i)
+      ASSERT_EQ(fast[i], kGuard) << n << " pixels, byte " << i;
   }
 }
 

@@ -59,7 +59,9 @@ void Tail(const uint8_t* src, size_t from, size_t pixels, uint8_t* dst) {
 
 }  // namespace
 
-void RgbaRowToRgbScalar(const uint8_t* src, size_t pixels, uint8_t* dst) { Tail(src, 0, pixels, dst); }
+void RgbaRowToRgbScalar(const uint8_t* src, size_t pixels, uint8_t* dst) {
+  Tail(src, 0, pixels, dst);
+}
 
 void RgbaRowToRgb(const uint8_t* src, size_t pixels, uint8_t* dst) {
   size_t done = 0;

@@ -22,7 +22,8 @@ uint32_t CompactVisibleTriangles(const uint8_t* id_rgba, size_t pixels, const ui
 
 // The ID pass's code of one RGBA pixel: 0 for background, else triangle + 1.
 inline uint32_t TriangleCode(const uint8_t* rgba) {
-  return static_cast<uint32_t>(rgba[0]) | static_cast<uint32_t>(rgba[1]) << 8 | static_cast<uint32_t>(rgba[2]) << 16;
+  return static_cast<uint32_t>(rgba[0]) | static_cast<uint32_t>(rgba[1]) << 8 |
+         static_cast<uint32_t>(rgba[2]) << 16;
 }
 
 }  // namespace relight::render
