@@ -32,6 +32,7 @@ struct CompressionStats {
   // largest and the mean absolute error of the compressed form.
   double max_error = 0, mean_error = 0;
   uint64_t bytes = 0;  // in memory: compressed, or the int16 basis when not compressed
+  uint8_t weight_bits = 16;  // of the compressed form
 };
 
 // basis[c]: receivers x terms (per candela of Y_t, as luminance_basis.h);
@@ -40,11 +41,13 @@ struct CompressionStats {
 // receivers (receivers x 3), which counts towards each look's peak;
 // max_error: the target, a fraction of each look's peak (> 0). Fills `out`
 // when compressing pays; `curve`, if given, receives every candidate.
+// try_8bit: the chosen form's weights go to 8 bits when that still meets
+// max_error and a mean of max_error / 10 (BakeOptions::compress_8bit_weights).
 CompressionStats CompressBasis(const std::array<Eigen::MatrixXd, 3>& basis,
                                const std::vector<Eigen::VectorXd>& looks,
                                const std::vector<Eigen::MatrixXd>& direct, double max_error,
                                int threads, BakeCompressedBasis* out,
-                               std::vector<CompressionPoint>* curve = nullptr);
+                               std::vector<CompressionPoint>* curve = nullptr, bool try_8bit = false);
 
 // The error of `cpca` as stored (quantised), at the looks, as in
 // CompressionStats; threads as ParallelFor takes them (0: every core).

@@ -44,7 +44,7 @@ void CompressLuminaireBases(const Luminaire& lum, size_t index, int degree,
     BakeCompressedBasis cpca;
     const CompressionStats st =
         CompressBasis(b, coef, direct, options.compress_error, options.threads, &cpca,
-                      options.compress_curve ? &curve : nullptr);
+                      options.compress_curve ? &curve : nullptr, options.compress_8bit_weights);
     for (CompressionPoint& p : curve) {
       p.luminaire = index;
       p.set = s;
@@ -61,6 +61,7 @@ void CompressLuminaireBases(const Luminaire& lum, size_t index, int degree,
     rec.basis.shrink_to_fit();
     rec.basis_scale.clear();
     ++report->bases_compressed;
+    if (st.weight_bits == 8) ++report->bases_8bit;
     report->compress_max_error = std::max(report->compress_max_error, st.max_error);
     // Mean over compressed bases (each counted once).
     report->compress_mean_error +=

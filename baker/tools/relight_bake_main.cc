@@ -87,6 +87,7 @@ struct Args {
   // "Compressed bases"); 0 or --no-compress stores them uncompressed.
   double compress_error_percent = 100 * relight::baker::kDefaultCompressError;
   bool no_compress = false;
+  bool weights_16bit = false;
   std::string compress_curve_path;  // CSV of every candidate weighed, for the docs' plot
   std::string recompress_path;      // an uncompressed bake of the scene to compress anew
   std::vector<std::string> sets;
@@ -180,8 +181,9 @@ void PrintCompression(const relight::baker::BakeReport& r) {
               static_cast<double>(r.basis_float32_bytes) / static_cast<double>(r.basis_bytes),
               static_cast<double>(r.basis_bytes) / (1024.0 * 1024.0));
   if (r.bases_compressed > 0) {
-    std::printf(", max %.2f %% / mean %.3f %% of peak (%zu of %zu bases compressed)",
-                100 * r.compress_max_error, 100 * r.compress_mean_error, r.bases_compressed, r.bases);
+    std::printf(", max %.2f %% / mean %.3f %% of peak (%zu of %zu bases compressed, %zu of them with 8-bit weights)",
+                100 * r.compress_max_error, 100 * r.compress_mean_error, r.bases_compressed, r.bases,
+                r.bases_8bit);
   } else {
     std::printf(", uncompressed");
   }
@@ -218,6 +220,7 @@ int Run(const Args& args, const relight::baker::DistributedSession& mpi) {
   }
   options.compress_error = args.no_compress ? 0 : args.compress_error_percent / 100;
   options.compress_curve = !args.compress_curve_path.empty();
+  options.compress_8bit_weights = !args.weights_16bit;
   if (args.lid_error_percent > 0) {
     const auto mode = options.direct_mode.value_or(relight::baker::DirectModeKind::kExact);
     for (const auto& d : relight::baker::ApplyLidErrorTarget(&scene, args.lid_error_percent / 100, mode)) {
@@ -389,6 +392,10 @@ int main(int argc, char** argv) {
                  "compress the bases of this uncompressed bake of the scene (written by "
                  "--no-compress) instead of baking: no radiosity solve");
   app.add_flag("--no-compress", args.no_compress, "store the bases uncompressed (as --compress-error 0)");
+  app.add_flag("--16bit-weights", args.weights_16bit,
+               "keep every compressed basis's weights in 16 bits; by default a basis takes 8-bit "
+               "weights (half the bytes the runtime reads a frame) when its error with them still "
+               "meets --compress-error (max) and a tenth of it (mean)");
   app.add_flag("-q,--quiet", args.quiet, "no progress bar and no summary");
   app.add_flag("--reference", args.reference,
                "solve with the exact distributions and write CSV instead of a bake");

@@ -205,32 +205,50 @@ void ReferenceError(const MatrixXd& x, const MatrixXd& k, Index length, Index r,
   *mean_error = (sum.array() / peak.array()).mean() / (3.0 * static_cast<double>(n));
 }
 
+// receivers x 3 terms: trend(u) (u = i / receivers) times one random
+// direction plus four random directions of weights `scale` times N(0, 1),
+// with 8 random looks.
+struct TrendData {
+  MatrixXd x;
+  std::array<MatrixXd, 3> basis;
+  std::vector<VectorXd> looks;
+  MatrixXd k;
+};
+template <typename Trend>
+TrendData TrendBasis(Index receivers, Index terms, uint32_t seed, Trend trend, const double (&scale)[4]) {
+  const Index d = 3 * terms;
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  MatrixXd dirs(5, d);
+  for (Index i = 0; i < dirs.size(); ++i) dirs.data()[i] = normal(rng);
+  TrendData t;
+  t.x.resize(receivers, d);
+  for (Index i = 0; i < receivers; ++i) {
+    VectorXd row = trend(static_cast<double>(i) / static_cast<double>(receivers)) * dirs.row(4).transpose();
+    for (int j = 0; j < 4; ++j) row += scale[j] * normal(rng) * dirs.row(j).transpose();
+    t.x.row(i) = row.transpose();
+  }
+  for (int c = 0; c < 3; ++c) t.basis[c] = t.x.middleCols(c * terms, terms);
+  t.looks.assign(8, VectorXd(terms));
+  t.k.resize(terms, 8);
+  for (size_t l = 0; l < t.looks.size(); ++l) {
+    for (Index j = 0; j < terms; ++j) t.looks[l](j) = normal(rng);
+    t.k.col(static_cast<Index>(l)) = t.looks[l];
+  }
+  return t;
+}
+
 TEST(CompressBasis, EveryClusterLengthsErrorMatchesAPlainPca) {
   // 4500 receivers x 25 terms: the longer cluster lengths are built from
   // the shorter ones' moments, and each length ends in a partial cluster
   // (the 128 one with 20 receivers, fewer than its 75 dimensions). Each
   // receiver: a steep trend along the receivers (so the runs merged have
   // different means) plus four components of very different weight.
-  const Index receivers = 4500, terms = 25, d = 3 * terms;
-  std::mt19937 rng(17);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  MatrixXd dirs(5, d);
-  for (Index i = 0; i < dirs.size(); ++i) dirs.data()[i] = normal(rng);
-  MatrixXd x(receivers, d);
-  const double scale[4] = {1000, 100, 10, 1};
-  for (Index i = 0; i < receivers; ++i) {
-    VectorXd row = 1e5 * (static_cast<double>(i) / receivers) * dirs.row(4).transpose();
-    for (int j = 0; j < 4; ++j) row += scale[j] * normal(rng) * dirs.row(j).transpose();
-    x.row(i) = row.transpose();
-  }
-  std::array<MatrixXd, 3> basis;
-  for (int c = 0; c < 3; ++c) basis[c] = x.middleCols(c * terms, terms);
-  std::vector<VectorXd> looks(8, VectorXd(terms));
-  MatrixXd k(terms, 8);
-  for (size_t l = 0; l < looks.size(); ++l) {
-    for (Index t = 0; t < terms; ++t) looks[l](t) = normal(rng);
-    k.col(static_cast<Index>(l)) = looks[l];
-  }
+  const TrendData t = TrendBasis(4500, 25, 17, [](double u) { return 1e5 * u; }, {1000, 100, 10, 1});
+  const MatrixXd& x = t.x;
+  const MatrixXd& k = t.k;
+  const std::array<MatrixXd, 3>& basis = t.basis;
+  const std::vector<VectorXd>& looks = t.looks;
   BakeCompressedBasis out;
   std::vector<CompressionPoint> curve;
   CompressBasis(basis, looks, {}, 0.01, 2, &out, &curve);
@@ -293,6 +311,64 @@ TEST(CompressBasis, SameResultWithOneThreadOrTwo) {
   MeasureCompressedError(basis, one, looks, {}, &max_error, &mean_error, 2);
   EXPECT_EQ(max_error, a.max_error);
   EXPECT_EQ(mean_error, a.mean_error);
+}
+
+// 8-bit weights: the same form as with 16 bits, its weights rounded to 127
+// steps, taken only when the error measured on the stored form still meets
+// the target (max) and a tenth of it (mean); with a target the 8-bit form
+// cannot meet, the weights stay 16-bit.
+TEST(CompressBasis, EightBitWeightsOnlyWhereTheErrorStillMeetsTheTarget) {
+  // Light-like: a bright smooth trend along the receivers (a lit wall) and
+  // four fainter components of falling weight, 3000 receivers x 25 terms.
+  const TrendData t = TrendBasis(3000, 25, 29, [](double u) { return 1e4 * std::exp(-8 * (u - 0.4) * (u - 0.4)); },
+                                 {300, 30, 3, 0.3});
+  const std::array<MatrixXd, 3>& basis = t.basis;
+  const std::vector<VectorXd>& looks = t.looks;
+  BakeCompressedBasis sixteen, eight;
+  const CompressionStats a = CompressBasis(basis, looks, {}, 0.01, 2, &sixteen, nullptr, false);
+  const CompressionStats b = CompressBasis(basis, looks, {}, 0.01, 2, &eight, nullptr, true);
+  ASSERT_TRUE(a.compressed);
+  ASSERT_TRUE(b.compressed);
+  EXPECT_EQ(sixteen.weight_bits, 16);
+  EXPECT_EQ(a.weight_bits, 16);
+  ASSERT_EQ(eight.weight_bits, 8);
+  EXPECT_EQ(b.weight_bits, 8);
+  EXPECT_EQ(b.components, a.components);
+  EXPECT_EQ(b.clusters, a.clusters);
+  EXPECT_EQ(eight.vectors, sixteen.vectors);
+  EXPECT_LT(b.bytes, a.bytes);
+  EXPECT_EQ(a.bytes - b.bytes, sixteen.weights.size());  // a byte less a weight
+  for (int16_t w : eight.weights) ASSERT_LE(std::abs(int{w}), kCompressedWeightOne8);
+  double max_error = 0, mean_error = 0;
+  MeasureCompressedError(basis, eight, looks, {}, &max_error, &mean_error, 2);
+  EXPECT_EQ(max_error, b.max_error);
+  EXPECT_LE(max_error, 0.01);
+  EXPECT_LE(mean_error, 0.001);
+  EXPECT_GE(max_error, a.max_error * 0.5);  // rounding the weights coarser costs accuracy, not gains it
+  std::printf("8-bit weights: max %.4f %% / mean %.5f %% of peak; 16-bit: max %.4f %% / mean %.5f %%\n",
+              100 * b.max_error, 100 * b.mean_error, 100 * a.max_error, 100 * a.mean_error);
+
+  // Across targets: whatever form is chosen meets the target as stored, and
+  // 8-bit weights only with a mean within a tenth of it; the tighter targets
+  // keep 16 bits (both outcomes occur).
+  int eights = 0, sixteens = 0;
+  for (const double target : {0.01, 0.005, 0.002, 0.001, 0.0005, 0.0002}) {
+    BakeCompressedBasis form;
+    const CompressionStats c = CompressBasis(basis, looks, {}, target, 2, &form, nullptr, true);
+    if (!c.compressed) continue;
+    double m = 0, mean = 0;
+    MeasureCompressedError(basis, form, looks, {}, &m, &mean, 2);
+    EXPECT_EQ(m, c.max_error);
+    EXPECT_LE(m, target);
+    if (form.weight_bits == 8) {
+      EXPECT_LE(mean, 0.1 * target);
+      ++eights;
+    } else {
+      ++sixteens;
+    }
+  }
+  EXPECT_GT(eights, 0);
+  EXPECT_GT(sixteens, 0);
 }
 
 }  // namespace

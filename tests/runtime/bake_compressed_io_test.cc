@@ -116,6 +116,52 @@ TEST_F(BakeCompressedIoTest, ReaderRejectsEveryBrokenRuleNamingTheSection) {
   ExpectCorrupt(Edit([&](Bytes* p) { p->push_back(0); }), "CPCA");
 }
 
+// 8-bit weights (CPC8, version 8): the same basis with weights in [-127,
+// 127] reads back exactly and half its weight bytes; version 7 refuses the
+// section; a weight past 127 is corrupt in the file and refused by the writer.
+TEST_F(BakeCompressedIoTest, EightBitWeightsMakeVersion8AndReadBackExactly) {
+  Bake eight = compressed_;
+  BakeCompressedBasis& c = eight.luminaires[1].receivers[0].compressed;
+  c.weight_bits = 8;
+  for (int16_t& w : c.weights) w = static_cast<int16_t>(w / 129);  // [-127, 127]
+  c.weights[0] = -kCompressedWeightOne8;
+  c.weights[1] = kCompressedWeightOne8;
+  ASSERT_TRUE(WriteBake(eight, Path("cpc8.rlb")).ok());
+  const Bytes file = ReadFileBytes(Path("cpc8.rlb"));
+  Container k = Split(file);
+  EXPECT_EQ(k.version, 8u);
+  EXPECT_EQ(k.sections[kWashVertices].tag, Tag("CPC8"));
+  EXPECT_EQ(k.sections[kWashVertices].raw + 11 * kComponents,
+            Split(cpca_file_).sections[kWashVertices].raw);  // a byte a weight
+  Bake read;
+  ASSERT_TRUE(ParseBake(file.data(), file.size(), &read).ok());
+  ExpectBakesEqual(eight, read);
+
+  k.version = 7;
+  const Bytes v7 = Join(k);
+  Bake out;
+  Status st = ParseBake(v7.data(), v7.size(), &out);
+  EXPECT_EQ(st.code(), StatusCode::kCorrupt) << st.ToString();
+  EXPECT_TRUE(Contains(st.message(), "is CPC8, expected section BASE")) << st.message();
+
+  const Bytes bad = EditPayload(file, kWashVertices, [&](Bytes* p) {
+    const size_t at = p->size() - 11 * kComponents;
+    std::vector<int8_t> w = DecodePlanar<int8_t>(*p, at, 22, 1);
+    w[3] = -128;
+    EncodePlanar(w, 1, p, at);
+  });
+  st = ParseBake(bad.data(), bad.size(), &out);
+  EXPECT_EQ(st.code(), StatusCode::kCorrupt) << st.ToString();
+  EXPECT_TRUE(Contains(st.message(), "CPC8[lum 1 'wash', set 0]")) << st.message();
+  EXPECT_TRUE(Contains(st.message(), "weight 3 is -128, outside [-127, 127] (8-bit weights)")) << st.message();
+
+  c.weights[2] = 200;
+  st = WriteBake(eight, Path("cpc8.rlb"));
+  EXPECT_EQ(st.code(), StatusCode::kInvalidArgument) << st.ToString();
+  EXPECT_TRUE(Contains(st.message(), "weight 2 is 200")) << st.message();
+  EXPECT_EQ(ReadFileBytes(Path("cpc8.rlb")), file) << "the old file stays";
+}
+
 TEST_F(BakeCompressedIoTest, RandomDamageIsRejectedOrRoundTrips) {
   const auto [accepted, rejected] = DamagePayloads(cpca_file_, {kWashVertices}, 300, 11, Path("scratch.rlb"));
   EXPECT_GT(rejected, 0u);

@@ -176,12 +176,12 @@ TEST_F(BakeIoTest, SingleBitFlipsAreRejected) {
 TEST_F(BakeIoTest, NewerVersionIsUnsupportedAndVersionZeroCorrupt) {
   Container c = Split(file_);
   EXPECT_EQ(c.version, 3u);  // with a hierarchy
-  c.version = 8;
+  c.version = 9;
   Bake out;
   const Bytes newer = Join(c);
   Status st = ParseBake(newer.data(), newer.size(), &out);
   EXPECT_EQ(st.code(), StatusCode::kUnsupported) << st.ToString();
-  EXPECT_TRUE(Contains(st.message(), "version 8")) << st.message();
+  EXPECT_TRUE(Contains(st.message(), "version 9")) << st.message();
   c.version = 0;
   ExpectCorrupt(Join(c), "version 0");
 }

@@ -323,6 +323,7 @@ inline void ExpectBakesEqual(const Bake& a, const Bake& b) {
       EXPECT_EQ(p.compressed.vectors, q.compressed.vectors);
       EXPECT_TRUE(ScalesEqual(p.compressed.vector_scale, q.compressed.vector_scale));
       EXPECT_EQ(p.compressed.weights, q.compressed.weights);
+      EXPECT_EQ(p.compressed.weight_bits, q.compressed.weight_bits);
     }
   }
   ExpectHierarchiesEqual(a.hierarchy, b.hierarchy);

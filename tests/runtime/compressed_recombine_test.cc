@@ -124,6 +124,54 @@ TEST(CompressedClusterTest, ScalarIsExactAndEveryVectorPathBitIdenticalOnEveryTa
   }
 }
 
+// 8-bit weights (weight_bits 8): every path over int8 tiles against the
+// exact reference, with multipliers up to the limit a weight of 127 allows;
+// negative weights in an odd r's last component check that the sign-
+// extending load's high half is ignored (its multiplier pair is (K, 0)).
+TEST(CompressedClusterTest, EightBitWeightsGiveTheExactIntegersOnEveryPathAndTail) {
+  const SimdLevel before = ActiveSimdLevel();
+  std::mt19937 rng(17);
+  for (uint32_t r : {1u, 2u, 3u, 5u, 8u, 16u, 17u, 32u, 33u, 64u}) {
+    const int32_t limit = CompressedMultiplierLimit(r, kCompressedWeightOne8);
+    EXPECT_LE(int64_t{limit} * r * kCompressedWeightOne8, (int64_t{1} << 30) - 1);
+    for (uint32_t n : {1u, 7u, 15u, 16u, 17u, 31u, 32u, 33u, 47u, 64u, 100u}) {
+      for (bool extreme : {false, true}) {
+        SCOPED_TRACE(testing::Message() << "r " << r << " n " << n << " extreme " << extreme);
+        std::uniform_int_distribution<int32_t> kd(-limit, limit), wd(-kCompressedWeightOne8, kCompressedWeightOne8);
+        std::uniform_int_distribution<int32_t> md(-((1 << 30) - 1), (1 << 30) - 1), sd(0, 31);
+        std::vector<int16_t> w(size_t{n} * r);
+        for (int16_t& v : w) v = static_cast<int16_t>(extreme ? -kCompressedWeightOne8 : wd(rng));
+        ClusterMultipliers m{};
+        for (int ch = 0; ch < 3; ++ch) {
+          for (uint32_t j = 0; j < r; ++j) m.k[ch * r + j] = static_cast<int16_t>(extreme ? limit : kd(rng));
+          m.mean[ch] = extreme ? -((1 << 30) - 1) : md(rng);
+          m.shift[ch] = extreme ? 0 : sd(rng);
+        }
+        const std::vector<int32_t> want = Reference(w, n, r, m);
+        std::vector<int16_t> tiled(w.size());
+        TileClusterWeights(w.data(), n, r, tiled.data());
+        const std::vector<int8_t> bytes(tiled.begin(), tiled.end());
+        std::vector<int32_t> scalar(size_t{n} * 3, 0x5A5A5A5A);
+        CompressedClusterScalarQ12(bytes.data(), n, r, m, scalar.data());
+        EXPECT_EQ(scalar, want);
+        for (int l = 0; l <= static_cast<int>(SimdLevel::kAvx512Vnni); ++l) {
+          SetSimdLevelCap(static_cast<SimdLevel>(l));
+          std::vector<int32_t> any(size_t{n} * 3, 0x5A5A5A5A);
+          CompressedClusterQ12(bytes.data(), n, r, m, any.data());
+          EXPECT_EQ(any, want) << "cap " << SimdLevelName(static_cast<SimdLevel>(l));
+        }
+        SetSimdLevelCap(before);
+        if (CpuSupportsSimdLevel(SimdLevel::kAvx512Vnni)) {
+          std::vector<int32_t> vec(size_t{n} * 3 + 64, 0x5A5A5A5A);
+          CompressedClusterAvx512VnniQ12(bytes.data(), n, r, m, vec.data());
+          EXPECT_TRUE(std::equal(want.begin(), want.end(), vec.begin()));
+          for (size_t e = want.size(); e < vec.size(); ++e) EXPECT_EQ(vec[e], 0x5A5A5A5A);
+        }
+      }
+    }
+  }
+}
+
 TEST(CompressedClusterTest, MultipliersRoundWithTheLargestShiftUpToInt32Extremes) {
   std::mt19937 rng(9);
   for (uint32_t r : {1u, 4u, 16u, 64u}) {
@@ -136,7 +184,7 @@ TEST(CompressedClusterTest, MultipliersRoundWithTheLargestShiftUpToInt32Extremes
       std::vector<int32_t> projection(3 * (r + 1));
       for (int32_t& p : projection) p = pd(rng);
       ClusterMultipliers m{};
-      ClusterMultipliersQ12(projection.data(), r, &m);
+      ClusterMultipliersQ12(projection.data(), r, kCompressedWeightOne, &m);
       for (int ch = 0; ch < 3; ++ch) {
         EXPECT_EQ(m.mean[ch], projection[ch]);
         const int s = m.shift[ch];
@@ -159,7 +207,7 @@ TEST(CompressedClusterTest, MultipliersRoundWithTheLargestShiftUpToInt32Extremes
   // within half a step; a zero component takes the largest shift.
   std::vector<int32_t> huge = {5, 6, 7, INT32_MAX, INT32_MIN, 0};
   ClusterMultipliers m{};
-  ClusterMultipliersQ12(huge.data(), 1, &m);
+  ClusterMultipliersQ12(huge.data(), 1, kCompressedWeightOne, &m);
   for (int ch = 0; ch < 2; ++ch) {
     EXPECT_LT(m.shift[ch], 0);
     EXPECT_LE(std::abs(m.k[ch]), CompressedMultiplierLimit(1));
@@ -173,31 +221,33 @@ TEST(CompressedClusterTest, MultipliersRoundWithTheLargestShiftUpToInt32Extremes
 // definition's walk down from 31 finds (one 128-bit division a step here).
 TEST(CompressedClusterTest, ShiftIsTheLargestThatFitsExactly) {
   std::mt19937_64 rng(23);
-  for (uint32_t r : {1u, 2u, 7u, 8u, 16u, 32u}) {
-    const int64_t limit = CompressedMultiplierLimit(r);
-    for (int trial = 0; trial < 3000; ++trial) {
-      const int bits = static_cast<int>(rng() % 32);
-      std::vector<int32_t> projection(3 * (r + 1));
-      for (int32_t& p : projection) {
-        p = static_cast<int32_t>(static_cast<int64_t>(rng() % (uint64_t{1} << bits)) * (rng() % 2 ? 1 : -1));
-      }
-      if (trial == 0) projection[3] = INT32_MIN;
-      ClusterMultipliers m{};
-      ClusterMultipliersQ12(projection.data(), r, &m);
-      for (int ch = 0; ch < 3; ++ch) {
-        Int128 largest = 0;
-        for (uint32_t j = 0; j < r; ++j) {
-          const Int128 p = projection[(1 + j) * 3 + ch];
-          largest = std::max(largest, p < 0 ? -p : p);
+  for (const int32_t one : {int32_t{kCompressedWeightOne}, int32_t{kCompressedWeightOne8}}) {
+    for (uint32_t r : {1u, 2u, 7u, 8u, 16u, 32u}) {
+      const int64_t limit = CompressedMultiplierLimit(r, one);
+      for (int trial = 0; trial < 3000; ++trial) {
+        const int bits = static_cast<int>(rng() % 32);
+        std::vector<int32_t> projection(3 * (r + 1));
+        for (int32_t& p : projection) {
+          p = static_cast<int32_t>(static_cast<int64_t>(rng() % (uint64_t{1} << bits)) * (rng() % 2 ? 1 : -1));
         }
-        const auto scaled = [&](int s) {  // round(a 2^s / 16383), halves up
-          const Int128 num = s >= 0 ? largest << s : largest, den = s >= 0 ? Int128{kCompressedWeightOne}
-                                                                               : Int128{kCompressedWeightOne} << -s;
-          return (num + den / 2) / den;
-        };
-        int s = 31;
-        while (s > -31 && scaled(s) > limit) --s;
-        ASSERT_EQ(m.shift[ch], s) << "r " << r << " largest " << static_cast<int64_t>(largest);
+        if (trial == 0) projection[3] = INT32_MIN;
+        ClusterMultipliers m{};
+        ClusterMultipliersQ12(projection.data(), r, one, &m);
+        for (int ch = 0; ch < 3; ++ch) {
+          Int128 largest = 0;
+          for (uint32_t j = 0; j < r; ++j) {
+            const Int128 p = projection[(1 + j) * 3 + ch];
+            largest = std::max(largest, p < 0 ? -p : p);
+          }
+          const auto scaled = [&](int s) {  // round(a 2^s / one), halves up
+            const Int128 num = s >= 0 ? largest << s : largest, den = s >= 0 ? Int128{one} : Int128{one} << -s;
+            return (num + den / 2) / den;
+          };
+          int s = 31;
+          while (s > -31 && scaled(s) > limit) --s;
+          ASSERT_EQ(m.shift[ch], s) << "one " << one << " r " << r << " largest " << static_cast<int64_t>(largest);
+          for (uint32_t j = 0; j < r; ++j) ASSERT_LE(std::abs(int32_t{m.k[ch * r + j]}), limit);
+        }
       }
     }
   }

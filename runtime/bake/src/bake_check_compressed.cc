@@ -78,11 +78,15 @@ std::string CheckCompressedBasis(const BakeCompressedBasis& cpca, int sh_degree,
       }
     }
   }
+  if (cpca.weight_bits != 8 && cpca.weight_bits != 16) {
+    return StrFormat("weights of %d bits (8 or 16)", cpca.weight_bits);
+  }
+  const int32_t one = CompressedWeightOne(cpca.weight_bits);
   for (size_t i = 0; i < cpca.weights.size(); ++i) {
     const int16_t w = cpca.weights[i];
-    if (w < -kCompressedWeightOne || w > kCompressedWeightOne) {
-      return StrFormat("weight %zu is %d, outside [-%d, %d]", i, w, kCompressedWeightOne,
-                       kCompressedWeightOne);
+    if (w < -one || w > one) {
+      return StrFormat("weight %zu is %d, outside [-%d, %d] (%d-bit weights)", i, w, one, one,
+                       cpca.weight_bits);
     }
   }
   return "";

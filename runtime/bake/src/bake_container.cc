@@ -11,7 +11,7 @@ std::string TagName(uint32_t tag) {
   char s[5] = {};
   for (int i = 0; i < 4; ++i) {
     const char c = static_cast<char>(tag >> (8 * i));
-    if (c < 'A' || c > 'Z') return StrFormat("0x%08X", tag);
+    if ((c < 'A' || c > 'Z') && (c < '0' || c > '9')) return StrFormat("0x%08X", tag);  // CPC8
     s[i] = c;
   }
   return s;

@@ -15,7 +15,7 @@ namespace relight::bake_format {
 
 // --- File header (28 bytes) and table of contents (36 bytes per section).
 inline constexpr uint8_t kMagic[8] = {'R', 'E', 'L', 'I', 'G', 'H', 'T', '\0'};
-inline constexpr uint32_t kVersion = 7;
+inline constexpr uint32_t kVersion = 8;
 // Version 1 files still read: their LUMI sections end after the LID samples
 // (no orientation, ranges or (C, gamma) table; defaults apply).
 inline constexpr uint32_t kOldestVersion = 1;
@@ -38,6 +38,9 @@ inline constexpr uint32_t kFirstVersionWithGridLinks = 6;
 // a degree it would call corrupt.
 inline constexpr uint32_t kFirstVersionWithHighDegree = 7;
 inline constexpr int kMaxShDegreeBeforeVersion7 = 16;
+// Version 8: a CPC8 section (a compressed basis with 8-bit weights) may stand
+// where a CPCA does. Written only when some basis has them.
+inline constexpr uint32_t kFirstVersionWith8BitWeights = 8;
 inline constexpr size_t kVersionOffset = 8;
 inline constexpr size_t kSectionCountOffset = 12;
 inline constexpr size_t kFileSizeOffset = 16;
@@ -65,6 +68,7 @@ inline constexpr uint32_t kTagBasis = Fourcc('B', 'A', 'S', 'E');
 inline constexpr uint32_t kTagHierarchy = Fourcc('H', 'I', 'E', 'R');
 inline constexpr uint32_t kTagLinks = Fourcc('L', 'I', 'N', 'K');
 inline constexpr uint32_t kTagCompressed = Fourcc('C', 'P', 'C', 'A');
+inline constexpr uint32_t kTagCompressed8 = Fourcc('C', 'P', 'C', '8');
 inline constexpr uint32_t kTagGridLinks = Fourcc('G', 'L', 'N', 'K');
 
 struct TocEntry {
@@ -146,12 +150,13 @@ constexpr uint64_t BasisBytes(uint64_t terms, uint64_t receivers) {
 // vector scales, the 3T x C(r+1) vector values, the receivers x r weights.
 // C (r + 1) is at most receivers + kMaxCompressedComponents + 1 (a
 // compressed basis is never much larger than the basis it replaces), which
-// bounds the section before its counts are read.
+// bounds the section before its counts are read. CPC8 is the same with a
+// byte a weight (weight_bytes 1).
 inline constexpr uint64_t kCompressedFixedBytes = 2 * 4;
 constexpr uint64_t CompressedBytes(uint64_t terms, uint64_t receivers, uint64_t clusters,
-                                   uint64_t components) {
+                                   uint64_t components, uint64_t weight_bytes = 2) {
   return kCompressedFixedBytes + 4 * (clusters + 1) + kScaleBytes * 3 * terms +
-         2 * 3 * terms * clusters * (components + 1) + 2 * receivers * components;
+         2 * 3 * terms * clusters * (components + 1) + weight_bytes * receivers * components;
 }
 constexpr uint64_t MaxCompressedVectors(uint64_t receivers) {
   return receivers + kMaxCompressedComponents + 1;

@@ -130,20 +130,22 @@ class Parser {
             }
             ++index;
           }
-          // Version 5 on, a compressed basis (CPCA) may stand for the BASE.
-          const bool compressed = in_.version() >= kFirstVersionWithCompressed &&
-                                  in_.tag(index) == kTagCompressed;
-          const std::string label = ReceiverLabel(compressed ? "CPCA" : "BASE", l, lum, s);
+          // Version 5 on, a compressed basis (CPCA) may stand for the BASE;
+          // version 8 on, one with 8-bit weights (CPC8).
+          const bool bytes = in_.version() >= kFirstVersionWith8BitWeights && in_.tag(index) == kTagCompressed8;
+          const bool compressed =
+              bytes || (in_.version() >= kFirstVersionWithCompressed && in_.tag(index) == kTagCompressed);
+          const std::string label = ReceiverLabel(bytes ? "CPC8" : (compressed ? "CPCA" : "BASE"), l, lum, s);
           if (pass == 0 && compressed) {
-            RELIGHT_RETURN_IF_ERROR(in_.Expect(index, kTagCompressed, label,
+            RELIGHT_RETURN_IF_ERROR(in_.Expect(index, bytes ? kTagCompressed8 : kTagCompressed, label,
                                                CompressedBytes(terms, count, 1, 0),
                                                MaxCompressedBytes(terms, count)));
           } else if (pass == 0) {
             const uint64_t raw = BasisBytes(terms, count);
             RELIGHT_RETURN_IF_ERROR(in_.Expect(index, kTagBasis, label, raw, raw));
           } else if (compressed) {
-            RELIGHT_RETURN_IF_ERROR(
-                DecodeCompressedBasis(&in_, index, label, lum.sh_degree, count, &lum.receivers[s]));
+            RELIGHT_RETURN_IF_ERROR(DecodeCompressedBasis(&in_, index, label, lum.sh_degree, count,
+                                                          bytes ? 8 : 16, &lum.receivers[s]));
           } else {
             RELIGHT_RETURN_IF_ERROR(
                 DecodeBasis(&in_, index, label, lum.sh_degree, count, &lum.receivers[s]));

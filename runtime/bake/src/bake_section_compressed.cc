@@ -27,14 +27,22 @@ void EncodeCompressedBasis(const BakeCompressedBasis& cpca, std::vector<uint8_t>
     w.Put(s.exponent);
   }
   w.PutPlanar(cpca.vectors, 3);
-  w.PutPlanar(cpca.weights, 1);
+  if (cpca.weight_bits == 8) {
+    // CPC8: a byte a weight (the writer's caller checked they fit).
+    const std::vector<int8_t> bytes(cpca.weights.begin(), cpca.weights.end());
+    w.PutPlanar(bytes, 1);
+  } else {
+    w.PutPlanar(cpca.weights, 1);
+  }
 }
 
 Status DecodeCompressedBasis(ContainerReader* in, size_t index, const std::string& label, int degree,
-                             uint32_t count, BakeLightReceivers* rec) {
+                             uint32_t count, uint8_t weight_bits, BakeLightReceivers* rec) {
   ByteReader r(nullptr, 0);
   RELIGHT_RETURN_IF_ERROR(in->Load(index, label, &r));
   BakeCompressedBasis& cpca = rec->compressed;
+  cpca.weight_bits = weight_bits;
+  const uint64_t weight_bytes = weight_bits == 8 ? 1 : 2;
   const uint32_t clusters = r.Get<uint32_t>("cluster count");
   cpca.components = r.Get<uint32_t>("component count");
   if (r.failed()) return in->Finish(r, label);
@@ -47,7 +55,7 @@ Status DecodeCompressedBasis(ContainerReader* in, size_t index, const std::strin
                                         clusters, cpca.components, count, kMaxCompressedComponents,
                                         kMaxCompressedComponents + 1));
   }
-  const uint64_t need = CompressedBytes(terms, count, clusters, cpca.components);
+  const uint64_t need = CompressedBytes(terms, count, clusters, cpca.components, weight_bytes);
   if (in->raw_size(index) != need) {
     return in->Corrupt(label, StrFormat("raw size %llu, the counts need %llu",
                                         static_cast<ull>(in->raw_size(index)), static_cast<ull>(need)));
@@ -60,7 +68,13 @@ Status DecodeCompressedBasis(ContainerReader* in, size_t index, const std::strin
     s.exponent = r.Get<int32_t>("vector_scale");
   }
   r.GetPlanar(&cpca.vectors, 3 * terms * clusters * (cpca.components + 1), 3, "vectors");
-  r.GetPlanar(&cpca.weights, size_t{count} * cpca.components, 1, "weights");
+  if (weight_bits == 8) {
+    std::vector<int8_t> bytes;
+    r.GetPlanar(&bytes, size_t{count} * cpca.components, 1, "weights");
+    cpca.weights.assign(bytes.begin(), bytes.end());
+  } else {
+    r.GetPlanar(&cpca.weights, size_t{count} * cpca.components, 1, "weights");
+  }
   RELIGHT_RETURN_IF_ERROR(in->Finish(r, label));
   const std::string e = CheckCompressedBasis(cpca, degree, count);
   if (!e.empty()) return in->Corrupt(label, e);

@@ -51,7 +51,7 @@ Status DecodeBasis(ContainerReader* in, size_t index, const std::string& label, 
 // CPCA (bake_section_compressed.cc): a compressed basis in place of BASE.
 void EncodeCompressedBasis(const BakeCompressedBasis& cpca, std::vector<uint8_t>* out);
 Status DecodeCompressedBasis(ContainerReader* in, size_t index, const std::string& label, int degree,
-                             uint32_t count, BakeLightReceivers* rec);
+                             uint32_t count, uint8_t weight_bits, BakeLightReceivers* rec);
 
 void EncodeHierarchyNodes(const BakeHierarchy& h, std::vector<uint8_t>* out);
 void EncodeHierarchyLinks(const BakeHierarchy& h, std::vector<uint8_t>* out);

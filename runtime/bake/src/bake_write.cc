@@ -29,6 +29,11 @@ uint32_t SectionCount(const Bake& bake) {
 // The lowest version that holds the bake, so older readers read what they can.
 uint32_t FileVersion(const Bake& bake) {
   for (const BakeLuminaire& lum : bake.luminaires) {
+    for (const BakeLightReceivers& rec : lum.receivers) {
+      if (rec.compressed.present() && rec.compressed.weight_bits == 8) return kFirstVersionWith8BitWeights;
+    }
+  }
+  for (const BakeLuminaire& lum : bake.luminaires) {
     if (lum.sh_degree > kMaxShDegreeBeforeVersion7) return kFirstVersionWithHighDegree;
   }
   if (bake.hierarchy && bake.hierarchy->has_grid_links()) return kFirstVersionWithGridLinks;
@@ -69,7 +74,7 @@ bool WriteSections(const Bake& bake, int fd, std::vector<BakeSectionSize>* sizes
         ok = ok && add(kTagDirect, [&](std::vector<uint8_t>* o) { EncodeDirect(rec, o); });
       }
       if (rec.compressed.present()) {
-        ok = ok && add(kTagCompressed,
+        ok = ok && add(rec.compressed.weight_bits == 8 ? kTagCompressed8 : kTagCompressed,
                        [&](std::vector<uint8_t>* o) { EncodeCompressedBasis(rec.compressed, o); });
       } else {
         ok = ok && add(kTagBasis, [&](std::vector<uint8_t>* o) { EncodeBasis(rec, o); });

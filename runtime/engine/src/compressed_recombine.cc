@@ -21,11 +21,12 @@ constexpr int kMaxClusterShift = 31;
 
 constexpr int kMinClusterShift = -31;
 
-// round(a 2^s / kCompressedWeightOne) for 0 <= a <= 2^31, halves up; for
-// s >= 0 a 2^s <= 2^62, for s < 0 the divisor 16383 2^-s < 2^45: no overflow.
-int64_t ScaledMagnitude(int64_t a, int s) {
-  if (s >= 0) return ((a << s) + kCompressedWeightOne / 2) / kCompressedWeightOne;
-  const int64_t d = int64_t{kCompressedWeightOne} << -s;
+// round(a 2^s / one) for 0 <= a <= 2^31 and `one` a weight of 1 (16383 or
+// 127), halves up; for s >= 0 a 2^s <= 2^62, for s < 0 the divisor
+// one 2^-s < 2^45: no overflow.
+int64_t ScaledMagnitude(int64_t a, int s, int64_t one) {
+  if (s >= 0) return ((a << s) + one / 2) / one;
+  const int64_t d = one << -s;
   return (a + d / 2) / d;
 }
 
@@ -41,67 +42,35 @@ inline int32_t Finish(int32_t mean, int32_t acc, int s) {
 
 int BitLength(uint64_t v) { return v == 0 ? 0 : 64 - __builtin_clzll(v); }
 
-// The largest s in [-31, 31] with ScaledMagnitude(a, s) <= limit (-31 if
-// none), which is non-decreasing in s. Found from the bit lengths, then a
+// The largest s in [-31, 31] with ScaledMagnitude(a, s, one) <= limit (-31
+// if none), which is non-decreasing in s. Found from the bit lengths, then a
 // step or two down, not by walking from 31 with a division a step: any s
-// with a 2^s >= 2^14 (limit + 1) gives more than the limit, and
-// a >= 2^(bits(a) - 1), so the answer is at most 14 + bits(limit + 1) - bits(a).
-int LargestShift(int64_t a, int64_t limit) {
+// with a 2^s >= 2^bits(one) (limit + 1) gives more than the limit, and
+// a >= 2^(bits(a) - 1), so the answer is at most
+// bits(one) + bits(limit + 1) - bits(a).
+int LargestShift(int64_t a, int64_t limit, int64_t one) {
   if (a == 0) return kMaxClusterShift;
-  int s = 14 + BitLength(static_cast<uint64_t>(limit) + 1) - BitLength(static_cast<uint64_t>(a));
+  int s = BitLength(static_cast<uint64_t>(one)) + BitLength(static_cast<uint64_t>(limit) + 1) -
+          BitLength(static_cast<uint64_t>(a));
   s = s > kMaxClusterShift ? kMaxClusterShift : (s < kMinClusterShift ? kMinClusterShift : s);
-  while (s > kMinClusterShift && ScaledMagnitude(a, s) > limit) --s;
+  while (s > kMinClusterShift && ScaledMagnitude(a, s, one) > limit) --s;
   return s;
 }
 
-}  // namespace
-
-int32_t CompressedMultiplierLimit(uint32_t components) {
-  if (components == 0) return kCompressedWeightOne;
-  const int64_t limit = ((int64_t{1} << 30) - 1) / (int64_t{components} * kCompressedWeightOne);
-  return limit < kCompressedWeightOne ? static_cast<int32_t>(limit) : kCompressedWeightOne;
-}
-
-void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, ClusterMultipliers* m) {
-  const int64_t limit = CompressedMultiplierLimit(components);
-  for (int ch = 0; ch < 3; ++ch) {
-    const int32_t mean = projection[ch];
-    m->mean[ch] = mean > kMeanLimit ? kMeanLimit : (mean < -kMeanLimit ? -kMeanLimit : mean);
-    int64_t largest = 0;
-    for (uint32_t j = 0; j < components; ++j) {
-      const int64_t p = projection[(1 + j) * 3 + ch];
-      const int64_t a = p < 0 ? -p : p;
-      if (a > largest) largest = a;
-    }
-    const int s = LargestShift(largest, limit);
-    m->shift[ch] = s;
-    for (uint32_t j = 0; j < components; ++j) {
-      const int64_t p = projection[(1 + j) * 3 + ch];
-      int64_t k = ScaledMagnitude(p < 0 ? -p : p, s);
-      if (k > limit) k = limit;  // never for |P| < 2^31 at s = -31; kept as a guard
-      m->k[ch * components + j] = static_cast<int16_t>(p < 0 ? -k : k);
-    }
-  }
-}
-
-void CompressedClusterScalarQ12(const int16_t* w, uint32_t n, uint32_t components,
-                                const ClusterMultipliers& m, int32_t* out) {
-  CompressedClusterTailQ12(w, 0, n, components, m, out);
-}
-
-void CompressedClusterTailQ12(const int16_t* w, uint32_t from, uint32_t n, uint32_t components,
-                              const ClusterMultipliers& m, int32_t* out) {
+template <typename W>
+void ClusterTail(const W* w, uint32_t from, uint32_t n, uint32_t components, const ClusterMultipliers& m,
+                 int32_t* out) {
   const uint32_t pairs = components / 2;
   for (uint32_t i = from; i < n; ++i) {
     // Receiver i's tile (compressed_tiles.h): `width` receivers, i its q-th.
     const uint32_t first = i - i % kWeightTile, q = i % kWeightTile;
     const uint32_t width = n - first < kWeightTile ? n - first : kWeightTile;
-    const int16_t* tile = w + size_t{first} * components;
+    const W* tile = w + size_t{first} * components;
     for (int ch = 0; ch < 3; ++ch) {
       const int16_t* k = m.k + ch * components;
       int32_t acc = 0;  // exact: |acc| < 2^30 (see the header)
       for (uint32_t p = 0; p < pairs; ++p) {
-        const int16_t* pair = tile + size_t{p} * 2 * width + 2 * q;
+        const W* pair = tile + size_t{p} * 2 * width + 2 * q;
         acc += int32_t{pair[0]} * k[2 * p] + int32_t{pair[1]} * k[2 * p + 1];
       }
       if (components % 2 != 0) acc += int32_t{tile[size_t{pairs} * 2 * width + q]} * k[components - 1];
@@ -110,8 +79,9 @@ void CompressedClusterTailQ12(const int16_t* w, uint32_t from, uint32_t n, uint3
   }
 }
 
-void CompressedClusterQ12(const int16_t* w, uint32_t n, uint32_t components,
-                          const ClusterMultipliers& m, int32_t* out) {
+template <typename W>
+void ClusterOnActivePath(const W* w, uint32_t n, uint32_t components, const ClusterMultipliers& m,
+                         int32_t* out) {
   uint32_t done = 0;
   // Negative shifts (saturating left shifts) are rare: the scalar path takes them.
   if (m.shift[0] >= 0 && m.shift[1] >= 0 && m.shift[2] >= 0) {
@@ -130,7 +100,65 @@ void CompressedClusterQ12(const int16_t* w, uint32_t n, uint32_t components,
     }
   }
   // The tail (the cluster's last, short tile): same integers on the scalar path.
-  if (done < n) CompressedClusterTailQ12(w, done, n, components, m, out);
+  if (done < n) ClusterTail(w, done, n, components, m, out);
+}
+
+}  // namespace
+
+int32_t CompressedMultiplierLimit(uint32_t components, int32_t weight_one) {
+  if (components == 0) return kCompressedWeightOne;
+  const int64_t limit = ((int64_t{1} << 30) - 1) / (int64_t{components} * weight_one);
+  return limit < kCompressedWeightOne ? static_cast<int32_t>(limit) : kCompressedWeightOne;
+}
+
+void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, int32_t weight_one,
+                           ClusterMultipliers* m) {
+  const int64_t limit = CompressedMultiplierLimit(components, weight_one);
+  for (int ch = 0; ch < 3; ++ch) {
+    const int32_t mean = projection[ch];
+    m->mean[ch] = mean > kMeanLimit ? kMeanLimit : (mean < -kMeanLimit ? -kMeanLimit : mean);
+    int64_t largest = 0;
+    for (uint32_t j = 0; j < components; ++j) {
+      const int64_t p = projection[(1 + j) * 3 + ch];
+      const int64_t a = p < 0 ? -p : p;
+      if (a > largest) largest = a;
+    }
+    const int s = LargestShift(largest, limit, weight_one);
+    m->shift[ch] = s;
+    for (uint32_t j = 0; j < components; ++j) {
+      const int64_t p = projection[(1 + j) * 3 + ch];
+      int64_t k = ScaledMagnitude(p < 0 ? -p : p, s, weight_one);
+      if (k > limit) k = limit;  // never for |P| < 2^31 at s = -31; kept as a guard
+      m->k[ch * components + j] = static_cast<int16_t>(p < 0 ? -k : k);
+    }
+  }
+}
+
+void CompressedClusterScalarQ12(const int16_t* w, uint32_t n, uint32_t components,
+                                const ClusterMultipliers& m, int32_t* out) {
+  ClusterTail(w, 0, n, components, m, out);
+}
+void CompressedClusterScalarQ12(const int8_t* w, uint32_t n, uint32_t components,
+                                const ClusterMultipliers& m, int32_t* out) {
+  ClusterTail(w, 0, n, components, m, out);
+}
+
+void CompressedClusterTailQ12(const int16_t* w, uint32_t from, uint32_t n, uint32_t components,
+                              const ClusterMultipliers& m, int32_t* out) {
+  ClusterTail(w, from, n, components, m, out);
+}
+void CompressedClusterTailQ12(const int8_t* w, uint32_t from, uint32_t n, uint32_t components,
+                              const ClusterMultipliers& m, int32_t* out) {
+  ClusterTail(w, from, n, components, m, out);
+}
+
+void CompressedClusterQ12(const int16_t* w, uint32_t n, uint32_t components,
+                          const ClusterMultipliers& m, int32_t* out) {
+  ClusterOnActivePath(w, n, components, m, out);
+}
+void CompressedClusterQ12(const int8_t* w, uint32_t n, uint32_t components,
+                          const ClusterMultipliers& m, int32_t* out) {
+  ClusterOnActivePath(w, n, components, m, out);
 }
 
 uint64_t CompressedProjectionValues(const BakeCompressedBasis& cpca) {
@@ -147,10 +175,17 @@ uint32_t RecombineCompressedQ12(const BakeCompressedBasis& cpca, int terms, cons
   const uint32_t used = RecombineQ12(cpca.vectors.data(), static_cast<uint32_t>(terms), vectors,
                                      k_terms, shift, scratch, scratch_len, projection);
   ClusterMultipliers m;
+  const int32_t one = CompressedWeightOne(cpca.weight_bits);
+  const bool bytes = cpca.weight_bits == 8;
   for (uint32_t c = 0; c < cpca.cluster_count(); ++c) {
     const uint32_t start = cpca.cluster_start[c], n = cpca.cluster_start[c + 1] - start;
-    ClusterMultipliersQ12(projection + size_t{c} * (r + 1) * 3, r, &m);
-    CompressedClusterQ12(cpca.weights.data() + size_t{start} * r, n, r, m, out + size_t{start} * 3);
+    ClusterMultipliersQ12(projection + size_t{c} * (r + 1) * 3, r, one, &m);
+    const size_t first = size_t{start} * r;
+    if (bytes) {
+      CompressedClusterQ12(cpca.weights8.data() + first, n, r, m, out + size_t{start} * 3);
+    } else {
+      CompressedClusterQ12(cpca.weights.data() + first, n, r, m, out + size_t{start} * 3);
+    }
   }
   return used;
 }

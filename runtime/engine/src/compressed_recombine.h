@@ -26,28 +26,31 @@ struct ClusterMultipliers {
   int shift[3];
 };
 
-// The largest |K| for r components: r x kCompressedWeightOne x K_max < 2^30,
-// and K_max <= kCompressedWeightOne (an int16 that madd can pair).
-int32_t CompressedMultiplierLimit(uint32_t components);
+// The largest |K| for r components and weights of at most weight_one
+// (bake.h CompressedWeightOne): r x weight_one x K_max < 2^30, and
+// K_max <= kCompressedWeightOne (an int16 that madd can pair).
+int32_t CompressedMultiplierLimit(uint32_t components, int32_t weight_one = kCompressedWeightOne);
 
 // From the projected values of cluster c (projection + c (r + 1) * 3: the
 // mean, then component j at (1 + j) * 3 + ch; LightQ12 for a weight of 1,
-// i.e. q = kCompressedWeightOne):
-//   K_j = round(P_j 2^s / kCompressedWeightOne), halves away from zero, with
-//   s the largest in [-31, 31] that keeps every |K_j| <= CompressedMultiplierLimit(r).
+// i.e. q = weight_one, 16383 or 127):
+//   K_j = round(P_j 2^s / weight_one), halves away from zero, with
+//   s the largest in [-31, 31] that keeps every |K_j| <= CompressedMultiplierLimit(r, weight_one).
 //   s < 0 only for a component worth more than about 2^30 / r LightQ12
 //   (16384 cd/m^2 at r = 16) at its largest weight: a bright beam in an
 //   all-in-SH basis; its receivers then take the scalar path.
-void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, ClusterMultipliers* m);
+void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, int32_t weight_one,
+                           ClusterMultipliers* m);
 
 // Receivers [0, n) of one cluster, weights in tiles (compressed_tiles.h;
 // w_ij below is w[TiledWeightOffset(n, r, i, j)]):
 //   out[i * 3 + ch] = mean[ch] + ((sum_j w_ij K[ch r + j] + half) >> shift[ch])
 // (for shift < 0: mean + sum x 2^-shift in int64, saturated to int32).
 // Scaling and overflow:
-//   w      int16 in [-kCompressedWeightOne, kCompressedWeightOne] (< 2^14; the bake checks it)
+//   w      int16 in [-16383, 16383] (< 2^14), or int8 in [-127, 127] for an
+//          8-bit basis (the same formula; the bake checks both)
 //   K      int16, |K| <= CompressedMultiplierLimit(r)
-//   acc    int32, exact: |acc| <= r x 16383 x K_max < 2^30, so acc + half
+//   acc    int32, exact: |acc| <= r x weight_one x K_max < 2^30, so acc + half
 //          (half = 2^(s-1) <= 2^30) cannot overflow; the shift rounds halves up
 //   out    LightQ12: for shift >= 0, |mean| < 2^30 plus a shifted sum of at
 //          most 2^30 in magnitude: inside int32, never saturates; for
@@ -56,12 +59,18 @@ void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, Clust
 // (compressed_recombine_vnni.h) paths compute these same integers: bit-identical.
 void CompressedClusterScalarQ12(const int16_t* w, uint32_t n, uint32_t components,
                                 const ClusterMultipliers& m, int32_t* out);
+void CompressedClusterScalarQ12(const int8_t* w, uint32_t n, uint32_t components,
+                                const ClusterMultipliers& m, int32_t* out);
 // Receivers [from, n) of the same cluster (n and the tiles as above).
 void CompressedClusterTailQ12(const int16_t* w, uint32_t from, uint32_t n, uint32_t components,
+                              const ClusterMultipliers& m, int32_t* out);
+void CompressedClusterTailQ12(const int8_t* w, uint32_t from, uint32_t n, uint32_t components,
                               const ClusterMultipliers& m, int32_t* out);
 // Same, on the active vector path (recombine_dispatch.h: AVX-512 VNNI,
 // AVX-VNNI or AVX2) when every shift is >= 0.
 void CompressedClusterQ12(const int16_t* w, uint32_t n, uint32_t components,
+                          const ClusterMultipliers& m, int32_t* out);
+void CompressedClusterQ12(const int8_t* w, uint32_t n, uint32_t components,
                           const ClusterMultipliers& m, int32_t* out);
 
 // int32 values of the projection scratch a compressed basis needs: 3 C (r + 1).

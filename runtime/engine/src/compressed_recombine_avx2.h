@@ -18,5 +18,8 @@ namespace relight {
 // comment there); then shift, mean, and a 3-way interleave.
 void CompressedClusterAvx2Q12(const int16_t* w, uint32_t n, uint32_t components,
                               const ClusterMultipliers& m, int32_t* out);
+// The same over 8-bit weights (sign-extended to the same int16 pairs).
+void CompressedClusterAvx2Q12(const int8_t* w, uint32_t n, uint32_t components,
+                              const ClusterMultipliers& m, int32_t* out);
 
 }  // namespace relight

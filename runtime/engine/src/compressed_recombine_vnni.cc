@@ -59,42 +59,82 @@ RELIGHT_TARGET_AVX512_VNNI inline void StoreRgb(const __m512i* rgb, uint32_t cou
   }
 }
 
+// Loads of one tile's weights as the int16 pairs vpdpwssd takes, from int16
+// or int8 weights (sign-extended: the same values). Pairs: 16 receivers'
+// pair p (32 weights), or `count` receivers' (masked). Last: an odd r's
+// last weight, one a 32-bit lane with the weight in the low half; int16
+// zero-extends, int8 sign-extends (the high half then may be -1, which the
+// multiplier pair (K, 0) ignores).
+RELIGHT_TARGET_AVX512_VNNI inline __m512i LoadPairs(const int16_t* p) { return _mm512_loadu_si512(p); }
+RELIGHT_TARGET_AVX512_VNNI inline __m512i LoadPairs(const int8_t* p) {
+  return _mm512_cvtepi8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)));
+}
+RELIGHT_TARGET_AVX512_VNNI inline __m512i LoadPairs(const int16_t* p, uint32_t count) {
+  return _mm512_maskz_loadu_epi16(static_cast<__mmask32>((1u << (2 * count)) - 1), p);  // count < 16
+}
+RELIGHT_TARGET_AVX512_VNNI inline __m512i LoadPairs(const int8_t* p, uint32_t count) {
+  return _mm512_cvtepi8_epi16(_mm256_maskz_loadu_epi8(static_cast<__mmask32>((1u << (2 * count)) - 1), p));
+}
+RELIGHT_TARGET_AVX512_VNNI inline __m512i LoadLast(const int16_t* p) {
+  return _mm512_cvtepu16_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)));
+}
+RELIGHT_TARGET_AVX512_VNNI inline __m512i LoadLast(const int8_t* p) {
+  return _mm512_cvtepi8_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+}
+RELIGHT_TARGET_AVX512_VNNI inline __m512i LoadLast(const int16_t* p, uint32_t count) {
+  return _mm512_cvtepu16_epi32(_mm256_maskz_loadu_epi16(static_cast<__mmask16>((1u << count) - 1), p));
+}
+RELIGHT_TARGET_AVX512_VNNI inline __m512i LoadLast(const int8_t* p, uint32_t count) {
+  return _mm512_cvtepi8_epi32(_mm_maskz_loadu_epi8(static_cast<__mmask16>((1u << count) - 1), p));
+}
+
 // One tile of `count` receivers (1 .. 16; compressed_tiles.h) into acc[3]:
 // plain loads for a full tile, masked ones for the cluster's short last tile.
-RELIGHT_TARGET_AVX512_VNNI inline void AccumulateTile(const int16_t* tile, uint32_t count,
+template <typename W>
+RELIGHT_TARGET_AVX512_VNNI inline void AccumulateTile(const W* tile, uint32_t count,
                                                       uint32_t components,
                                                       const __m512i (*k)[kMaxCompressedComponents / 2 + 1],
                                                       __m512i* acc) {
   const uint32_t pairs = components / 2;
   if (count == 16) {
     for (uint32_t p = 0; p < pairs; ++p) {
-      const __m512i v = _mm512_loadu_si512(tile + 32 * p);
+      const __m512i v = LoadPairs(tile + 32 * p);
       for (int ch = 0; ch < 3; ++ch) acc[ch] = _mm512_dpwssd_epi32(acc[ch], v, k[ch][p]);
     }
     if (components % 2 != 0) {
-      const __m512i v = _mm512_cvtepu16_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(tile + 32 * pairs)));
+      const __m512i v = LoadLast(tile + 32 * pairs);
       for (int ch = 0; ch < 3; ++ch) acc[ch] = _mm512_dpwssd_epi32(acc[ch], v, k[ch][pairs]);
     }
     return;
   }
-  const __mmask32 words = static_cast<__mmask32>((1u << (2 * count)) - 1);  // count < 16
   for (uint32_t p = 0; p < pairs; ++p) {
-    const __m512i v = _mm512_maskz_loadu_epi16(words, tile + size_t{2 * count} * p);
+    const __m512i v = LoadPairs(tile + size_t{2 * count} * p, count);
     for (int ch = 0; ch < 3; ++ch) acc[ch] = _mm512_dpwssd_epi32(acc[ch], v, k[ch][p]);
   }
   if (components % 2 != 0) {
-    const __mmask16 lanes = static_cast<__mmask16>((1u << count) - 1);
-    const __m512i v = _mm512_cvtepu16_epi32(_mm256_maskz_loadu_epi16(lanes, tile + size_t{2 * count} * pairs));
+    const __m512i v = LoadLast(tile + size_t{2 * count} * pairs, count);
     for (int ch = 0; ch < 3; ++ch) acc[ch] = _mm512_dpwssd_epi32(acc[ch], v, k[ch][pairs]);
   }
 }
 
-}  // namespace
+// AVX-VNNI loads: 8 receivers' pairs (16 weights) and last weights, as in
+// the AVX2 body (compressed_recombine_avx2.cc).
+RELIGHT_TARGET_AVX_VNNI inline __m256i LoadPairs8(const int16_t* p) {
+  return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+}
+RELIGHT_TARGET_AVX_VNNI inline __m256i LoadPairs8(const int8_t* p) {
+  return _mm256_cvtepi8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+}
+RELIGHT_TARGET_AVX_VNNI inline __m256i LoadLast8(const int16_t* p) {
+  return _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+}
+RELIGHT_TARGET_AVX_VNNI inline __m256i LoadLast8(const int8_t* p) {
+  return _mm256_cvtepi8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)));
+}
 
-RELIGHT_TARGET_AVX512_VNNI void CompressedClusterAvx512VnniQ12(const int16_t* w, uint32_t n,
-                                                              uint32_t components,
-                                                              const ClusterMultipliers& m,
-                                                              int32_t* out) {
+template <typename W>
+RELIGHT_TARGET_AVX512_VNNI void ClusterAvx512Vnni(const W* w, uint32_t n, uint32_t components,
+                                                 const ClusterMultipliers& m, int32_t* out) {
   int32_t packed[3][kMaxCompressedComponents / 2 + 1];
   PairMultipliers(m, components, packed);
   __m512i k[3][kMaxCompressedComponents / 2 + 1];
@@ -112,7 +152,7 @@ RELIGHT_TARGET_AVX512_VNNI void CompressedClusterAvx512VnniQ12(const int16_t* w,
   uint32_t i0 = 0;
   // Two full tiles a step: six independent vpdpwssd chains.
   for (; i0 + 32 <= n; i0 += 32) {
-    const int16_t* tile = w + size_t{i0} * components;
+    const W* tile = w + size_t{i0} * components;
     __m512i a[3] = {half[0], half[1], half[2]}, b[3] = {half[0], half[1], half[2]};
     AccumulateTile(tile, 16, components, k, a);
     AccumulateTile(tile + 16 * components, 16, components, k, b);
@@ -133,8 +173,9 @@ RELIGHT_TARGET_AVX512_VNNI void CompressedClusterAvx512VnniQ12(const int16_t* w,
   }
 }
 
-RELIGHT_TARGET_AVX_VNNI void CompressedClusterAvxVnniQ12(const int16_t* w, uint32_t n, uint32_t components,
-                                                         const ClusterMultipliers& m, int32_t* out) {
+template <typename W>
+RELIGHT_TARGET_AVX_VNNI void ClusterAvxVnni(const W* w, uint32_t n, uint32_t components,
+                                            const ClusterMultipliers& m, int32_t* out) {
   const uint32_t pairs = components / 2;
   int32_t packed[3][kMaxCompressedComponents / 2 + 1];
   PairMultipliers(m, components, packed);
@@ -153,21 +194,21 @@ RELIGHT_TARGET_AVX_VNNI void CompressedClusterAvxVnniQ12(const int16_t* w, uint3
   const uint32_t tiles = n / 16;  // full tiles; the caller does the short last one
   for (uint32_t b = 0; b < tiles; ++b) {
     const uint32_t i0 = 16 * b;
-    const int16_t* tile = w + size_t{i0} * components;
+    const W* tile = w + size_t{i0} * components;
     __m256i lo[3], hi[3];  // receivers i0 + 0..7, i0 + 8..15
     for (int ch = 0; ch < 3; ++ch) lo[ch] = hi[ch] = half[ch];
     for (uint32_t p = 0; p < pairs; ++p) {
-      const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(tile + 32 * p));
-      const __m256i c = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(tile + 32 * p + 16));
+      const __m256i a = LoadPairs8(tile + 32 * p);
+      const __m256i c = LoadPairs8(tile + 32 * p + 16);
       for (int ch = 0; ch < 3; ++ch) {
         lo[ch] = _mm256_dpwssd_avx_epi32(lo[ch], a, k[ch][p]);
         hi[ch] = _mm256_dpwssd_avx_epi32(hi[ch], c, k[ch][p]);
       }
     }
     if (components % 2 != 0) {
-      const int16_t* last = tile + 32 * pairs;
-      const __m256i a = _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(last)));
-      const __m256i c = _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(last + 8)));
+      const W* last = tile + 32 * pairs;
+      const __m256i a = LoadLast8(last);
+      const __m256i c = LoadLast8(last + 8);
       for (int ch = 0; ch < 3; ++ch) {
         lo[ch] = _mm256_dpwssd_avx_epi32(lo[ch], a, k[ch][pairs]);
         hi[ch] = _mm256_dpwssd_avx_epi32(hi[ch], c, k[ch][pairs]);
@@ -183,13 +224,34 @@ RELIGHT_TARGET_AVX_VNNI void CompressedClusterAvxVnniQ12(const int16_t* w, uint3
   }
 }
 
+}  // namespace
+
+void CompressedClusterAvx512VnniQ12(const int16_t* w, uint32_t n, uint32_t components, const ClusterMultipliers& m,
+                                    int32_t* out) {
+  ClusterAvx512Vnni(w, n, components, m, out);
+}
+void CompressedClusterAvx512VnniQ12(const int8_t* w, uint32_t n, uint32_t components, const ClusterMultipliers& m,
+                                    int32_t* out) {
+  ClusterAvx512Vnni(w, n, components, m, out);
+}
+void CompressedClusterAvxVnniQ12(const int16_t* w, uint32_t n, uint32_t components, const ClusterMultipliers& m,
+                                 int32_t* out) {
+  ClusterAvxVnni(w, n, components, m, out);
+}
+void CompressedClusterAvxVnniQ12(const int8_t* w, uint32_t n, uint32_t components, const ClusterMultipliers& m,
+                                 int32_t* out) {
+  ClusterAvxVnni(w, n, components, m, out);
+}
+
 }  // namespace relight
 
 #else  // no x86-64 vector path on this target: CompressedClusterQ12 stays scalar
 
 namespace relight {
 void CompressedClusterAvx512VnniQ12(const int16_t*, uint32_t, uint32_t, const ClusterMultipliers&, int32_t*) {}
+void CompressedClusterAvx512VnniQ12(const int8_t*, uint32_t, uint32_t, const ClusterMultipliers&, int32_t*) {}
 void CompressedClusterAvxVnniQ12(const int16_t*, uint32_t, uint32_t, const ClusterMultipliers&, int32_t*) {}
+void CompressedClusterAvxVnniQ12(const int8_t*, uint32_t, uint32_t, const ClusterMultipliers&, int32_t*) {}
 }  // namespace relight
 
 #endif

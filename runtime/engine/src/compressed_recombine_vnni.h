@@ -31,5 +31,11 @@ void CompressedClusterAvx512VnniQ12(const int16_t* w, uint32_t n, uint32_t compo
 // [0, n - n % 16) (the full tiles), shifts >= 0 only; the caller does the tail.
 void CompressedClusterAvxVnniQ12(const int16_t* w, uint32_t n, uint32_t components,
                                  const ClusterMultipliers& m, int32_t* out);
+// Both bodies also over 8-bit weights: a sign-extending load in front of the
+// same vpdpwssd (the int16 pairs are the same values).
+void CompressedClusterAvx512VnniQ12(const int8_t* w, uint32_t n, uint32_t components,
+                                    const ClusterMultipliers& m, int32_t* out);
+void CompressedClusterAvxVnniQ12(const int8_t* w, uint32_t n, uint32_t components,
+                                 const ClusterMultipliers& m, int32_t* out);
 
 }  // namespace relight

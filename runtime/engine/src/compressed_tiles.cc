@@ -24,6 +24,12 @@ void TileCompressedWeights(BakeCompressedBasis* cpca) {
     TileClusterWeights(cluster.data(), n, r, w);
   }
   cpca->weight_order = CompressedWeightOrder::kTiles16;
+  if (cpca->weight_bits == 8) {
+    // A byte a weight (the bake checked every one is in [-127, 127]); the
+    // int16 copy is freed, so an 8-bit basis holds half the bytes.
+    cpca->weights8.assign(cpca->weights.begin(), cpca->weights.end());
+    std::vector<int16_t>().swap(cpca->weights);
+  }
 }
 
 }  // namespace relight

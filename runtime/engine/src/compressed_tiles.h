@@ -37,7 +37,8 @@ inline size_t TiledWeightOffset(uint32_t n, uint32_t r, uint32_t i, uint32_t j) 
 void TileClusterWeights(const int16_t* component_major, uint32_t n, uint32_t r, int16_t* tiled);
 
 // Every cluster of `cpca` into kTiles16 order, in place (no-op if already
-// tiled). Open time only: it allocates one cluster's scratch.
+// tiled); an 8-bit basis (weight_bits 8) then moves to `weights8`, a byte a
+// weight. Open time only: it allocates one cluster's scratch.
 void TileCompressedWeights(BakeCompressedBasis* cpca);
 
 }  // namespace relight

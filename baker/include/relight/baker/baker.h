@@ -85,6 +85,10 @@ struct BakeOptions {
   // principal directions differ in rounding, so the form chosen can differ
   // by a few bytes).
   bool compress_curve = false;
+  // A compressed basis keeps its weights in 8 bits instead of 16 (half the
+  // bytes the run-time kernel streams) when, quantised so, its error at the
+  // looks still meets compress_error (max) and a tenth of it (mean).
+  bool compress_8bit_weights = true;
 };
 
 // One rate-error point of the basis compression: a cluster length and
@@ -117,6 +121,7 @@ struct BakeReport {
   // BakeOptions::compress_error) over the compressed ones.
   uint64_t basis_bytes = 0, basis_float32_bytes = 0;
   size_t bases_compressed = 0, bases = 0;
+  size_t bases_8bit = 0;  // of the compressed ones, those with 8-bit weights
   double compress_max_error = 0, compress_mean_error = 0;
   // Every candidate the compression weighed (the docs' rate-error curve).
   std::vector<CompressionPoint> compress_curve;

@@ -129,6 +129,12 @@ struct BakeZoom {
 //     compressed_tiles.h), so its kernel reads one sequential stream.
 // The runtime recombines this form without expanding it (engine, compressed_recombine.h).
 inline constexpr int16_t kCompressedWeightOne = 16383;
+// A basis may hold its weights in 8 bits (weight_bits = 8, section CPC8,
+// format version 8): a weight of 1 is then 127.
+inline constexpr int16_t kCompressedWeightOne8 = 127;
+inline constexpr int32_t CompressedWeightOne(uint8_t weight_bits) {
+  return weight_bits == 8 ? kCompressedWeightOne8 : kCompressedWeightOne;
+}
 inline constexpr uint32_t kMaxCompressedComponents = 64;
 
 enum class CompressedWeightOrder : uint8_t {
@@ -141,16 +147,22 @@ struct BakeCompressedBasis {
   std::vector<uint32_t> cluster_start;   // C + 1: 0 first, the receiver count last, increasing
   std::vector<int16_t> vectors;          // 3 x terms x C x (r + 1), see above
   std::vector<QuantScale> vector_scale;  // [term][channel]
-  std::vector<int16_t> weights;          // receivers x r, each in [-kCompressedWeightOne, kCompressedWeightOne]
+  std::vector<int16_t> weights;          // receivers x r, each in [-one, one], one = CompressedWeightOne(weight_bits)
   CompressedWeightOrder weight_order = CompressedWeightOrder::kComponentMajor;
+  uint8_t weight_bits = 16;              // 16, or 8: weights in [-127, 127]
+  // The engine's 8-bit tiles (weight_bits 8 and kTiles16 only; `weights` is
+  // then empty): the same order, a byte a weight.
+  std::vector<int8_t> weights8;
   bool present() const { return !cluster_start.empty(); }
   uint32_t cluster_count() const {
     return cluster_start.empty() ? 0 : static_cast<uint32_t>(cluster_start.size() - 1);
   }
-  // Bytes of the arrays held in memory.
+  // Bytes of the arrays in the engine's memory (8-bit weights a byte each,
+  // as the engine holds them, whichever vector carries them now).
   uint64_t memory_bytes() const {
     return 4 * uint64_t{cluster_start.size()} + 2 * uint64_t{vectors.size()} +
-           8 * uint64_t{vector_scale.size()} + 2 * uint64_t{weights.size()};
+           8 * uint64_t{vector_scale.size()} + (weight_bits == 8 ? 1 : 2) * uint64_t{weights.size()} +
+           uint64_t{weights8.size()};
   }
 };
 
