@@ -9,28 +9,12 @@
 #include "compressed_recombine_interleave.h"
 
 namespace relight {
+using cpca_simd::LoadLast256;
+using cpca_simd::LoadPairs256;
 using cpca_simd::PairMultipliers;
 using cpca_simd::StoreInterleaved;
 
 namespace {
-
-// 8 receivers' int16 pairs of one component pair (16 weights), from int16
-// or from int8 weights (sign-extended: the same int16 values).
-__attribute__((target("avx2"))) inline __m256i LoadPairs(const int16_t* p) {
-  return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
-}
-__attribute__((target("avx2"))) inline __m256i LoadPairs(const int8_t* p) {
-  return _mm256_cvtepi8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
-}
-// 8 receivers' last weight of an odd r, one a 32-bit lane, low half the
-// weight. int16: zero-extended (w, 0); int8: sign-extended, so the high
-// half may be -1, which the pair's multiplier (K, 0) ignores.
-__attribute__((target("avx2"))) inline __m256i LoadLast(const int16_t* p) {
-  return _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
-}
-__attribute__((target("avx2"))) inline __m256i LoadLast(const int8_t* p) {
-  return _mm256_cvtepi8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)));
-}
 
 template <typename W>
 __attribute__((target("avx2"))) void ClusterAvx2(const W* w, uint32_t n, uint32_t components,
@@ -58,8 +42,8 @@ __attribute__((target("avx2"))) void ClusterAvx2(const W* w, uint32_t n, uint32_
     __m256i lo[3], hi[3];  // receivers i0 + 0..7, i0 + 8..15
     for (int ch = 0; ch < 3; ++ch) lo[ch] = hi[ch] = _mm256_setzero_si256();
     for (uint32_t p = 0; p < pairs; ++p) {
-      const __m256i a = LoadPairs(tile + 32 * p);
-      const __m256i c = LoadPairs(tile + 32 * p + 16);
+      const __m256i a = LoadPairs256(tile + 32 * p);
+      const __m256i c = LoadPairs256(tile + 32 * p + 16);
       for (int ch = 0; ch < 3; ++ch) {
         lo[ch] = _mm256_add_epi32(lo[ch], _mm256_madd_epi16(a, k[ch][p]));
         hi[ch] = _mm256_add_epi32(hi[ch], _mm256_madd_epi16(c, k[ch][p]));
@@ -67,8 +51,8 @@ __attribute__((target("avx2"))) void ClusterAvx2(const W* w, uint32_t n, uint32_
     }
     if (odd) {
       const W* last = tile + 32 * pairs;
-      const __m256i a = LoadLast(last);
-      const __m256i c = LoadLast(last + 8);
+      const __m256i a = LoadLast256(last);
+      const __m256i c = LoadLast256(last + 8);
       for (int ch = 0; ch < 3; ++ch) {
         lo[ch] = _mm256_add_epi32(lo[ch], _mm256_madd_epi16(a, k[ch][pairs]));
         hi[ch] = _mm256_add_epi32(hi[ch], _mm256_madd_epi16(c, k[ch][pairs]));

@@ -1,4 +1,4 @@
-// The 256-bit RGB interleave and the multiplier pairs shared by the AVX2 and AVX-VNNI bodies of the
+// The 256-bit weight loads, the RGB interleave and the multiplier pairs shared by the AVX2 and AVX-VNNI bodies of the
 // compressed recombination (compressed_recombine_avx2.cc,
 // compressed_recombine_vnni.cc). x86-64 SIMD files only: include it inside
 // their architecture guard.
@@ -27,6 +27,24 @@ __attribute__((target("avx2"), always_inline)) inline void StoreInterleaved(__m2
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), o0);
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + 8), o1);
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + 16), o2);
+}
+
+// 8 receivers' int16 pairs of one component pair (16 weights), from int16
+// or from int8 weights (sign-extended: the same int16 values).
+__attribute__((target("avx2"), always_inline)) inline __m256i LoadPairs256(const int16_t* p) {
+  return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+}
+__attribute__((target("avx2"), always_inline)) inline __m256i LoadPairs256(const int8_t* p) {
+  return _mm256_cvtepi8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+}
+// 8 receivers' last weight of an odd r, one a 32-bit lane, low half the
+// weight. int16: zero-extended (w, 0); int8: sign-extended, so the high
+// half may be -1, which the pair's multiplier (K, 0) ignores.
+__attribute__((target("avx2"), always_inline)) inline __m256i LoadLast256(const int16_t* p) {
+  return _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+}
+__attribute__((target("avx2"), always_inline)) inline __m256i LoadLast256(const int8_t* p) {
+  return _mm256_cvtepi8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)));
 }
 
 // Two multipliers per int32 lane: K_j in the low 16 bits, K_{j+1} in the

@@ -117,21 +117,6 @@ RELIGHT_TARGET_AVX512_VNNI inline void AccumulateTile(const W* tile, uint32_t co
   }
 }
 
-// AVX-VNNI loads: 8 receivers' pairs (16 weights) and last weights, as in
-// the AVX2 body (compressed_recombine_avx2.cc).
-RELIGHT_TARGET_AVX_VNNI inline __m256i LoadPairs8(const int16_t* p) {
-  return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
-}
-RELIGHT_TARGET_AVX_VNNI inline __m256i LoadPairs8(const int8_t* p) {
-  return _mm256_cvtepi8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
-}
-RELIGHT_TARGET_AVX_VNNI inline __m256i LoadLast8(const int16_t* p) {
-  return _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
-}
-RELIGHT_TARGET_AVX_VNNI inline __m256i LoadLast8(const int8_t* p) {
-  return _mm256_cvtepi8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)));
-}
-
 template <typename W>
 RELIGHT_TARGET_AVX512_VNNI void ClusterAvx512Vnni(const W* w, uint32_t n, uint32_t components,
                                                  const ClusterMultipliers& m, int32_t* out) {
@@ -198,8 +183,8 @@ RELIGHT_TARGET_AVX_VNNI void ClusterAvxVnni(const W* w, uint32_t n, uint32_t com
     __m256i lo[3], hi[3];  // receivers i0 + 0..7, i0 + 8..15
     for (int ch = 0; ch < 3; ++ch) lo[ch] = hi[ch] = half[ch];
     for (uint32_t p = 0; p < pairs; ++p) {
-      const __m256i a = LoadPairs8(tile + 32 * p);
-      const __m256i c = LoadPairs8(tile + 32 * p + 16);
+      const __m256i a = cpca_simd::LoadPairs256(tile + 32 * p);
+      const __m256i c = cpca_simd::LoadPairs256(tile + 32 * p + 16);
       for (int ch = 0; ch < 3; ++ch) {
         lo[ch] = _mm256_dpwssd_avx_epi32(lo[ch], a, k[ch][p]);
         hi[ch] = _mm256_dpwssd_avx_epi32(hi[ch], c, k[ch][p]);
@@ -207,8 +192,8 @@ RELIGHT_TARGET_AVX_VNNI void ClusterAvxVnni(const W* w, uint32_t n, uint32_t com
     }
     if (components % 2 != 0) {
       const W* last = tile + 32 * pairs;
-      const __m256i a = LoadLast8(last);
-      const __m256i c = LoadLast8(last + 8);
+      const __m256i a = cpca_simd::LoadLast256(last);
+      const __m256i c = cpca_simd::LoadLast256(last + 8);
       for (int ch = 0; ch < 3; ++ch) {
         lo[ch] = _mm256_dpwssd_avx_epi32(lo[ch], a, k[ch][pairs]);
         hi[ch] = _mm256_dpwssd_avx_epi32(hi[ch], c, k[ch][pairs]);
