@@ -41,8 +41,9 @@ struct CompressionStats {
 // receivers (receivers x 3), which counts towards each look's peak;
 // max_error: the target, a fraction of each look's peak (> 0). Fills `out`
 // when compressing pays; `curve`, if given, receives every candidate.
-// try_8bit: the chosen form's weights go to 8 bits when that still meets
-// max_error and a mean of max_error / 10 (BakeOptions::compress_8bit_weights).
+// try_8bit: every form is also weighed with a byte a weight, and an 8-bit
+// form is kept when it is the smallest that meets max_error and a mean of
+// max_error / 10 (BakeOptions::compress_8bit_weights).
 CompressionStats CompressBasis(const std::array<Eigen::MatrixXd, 3>& basis,
                                const std::vector<Eigen::VectorXd>& looks,
                                const std::vector<Eigen::MatrixXd>& direct, double max_error,

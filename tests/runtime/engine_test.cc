@@ -447,6 +447,36 @@ TEST_F(EngineTest, ResultDoesNotDependOnTheOrderOfSetCalls) {
   CheckAgainstFloat("mixed state");
 }
 
+TEST_F(EngineTest, FreeingTheCopiedDirectInputsChangesNoResult) {
+  EngineOptions lean;
+  lean.keep_direct_inputs = false;
+  Engine other;
+  ASSERT_TRUE(other.Open(MakeBake(scene_), lean).ok());
+  size_t kept = 0, freed = 0;
+  for (size_t i = 0; i < other.bake().luminaires.size(); ++i) {
+    const BakeLuminaire& b = other.bake().luminaires[i];
+    if (b.direct_mode != DirectMode::kExactDirect) continue;
+    for (size_t s = 0; s < b.receivers.size(); ++s) {
+      kept += engine_.bake().luminaires[i].receivers[s].geometry.size();
+      freed += b.receivers[s].direction.size() + b.receivers[s].geometry.size();
+    }
+  }
+  EXPECT_GT(kept, 0u);  // the default keeps them; the scene has an exact-direct luminaire
+  EXPECT_EQ(freed, 0u);
+  for (Engine* e : {&engine_, &other}) {
+    ASSERT_TRUE(e->SetPanTilt(0, Deg(-35), Deg(20)).ok());
+    ASSERT_TRUE(e->SetPanTilt(1, Deg(15), Deg(40)).ok());
+    ASSERT_TRUE(e->SetDimmer(0, Level(0.7)).ok());
+    e->Update();
+  }
+  const uint32_t n = engine_.vertex_count() * 3;
+  for (uint32_t i = 0; i < n; ++i) ASSERT_EQ(engine_.vertex_luminance().raw()[i], other.vertex_luminance().raw()[i]);
+  for (uint32_t i = 0; i < 27; ++i) {
+    ASSERT_EQ(engine_.grid_illuminance(0).raw()[i], other.grid_illuminance(0).raw()[i]);
+    ASSERT_EQ(engine_.grid_direct_illuminance(0).raw()[i], other.grid_direct_illuminance(0).raw()[i]);
+  }
+}
+
 TEST_F(EngineTest, ADarkLuminaireIsRebuiltWhenLit) {
   ASSERT_TRUE(engine_.SetDimmer(0, Level(0)).ok());
   ASSERT_TRUE(engine_.SetPanTilt(0, Deg(-70), Deg(25)).ok());

@@ -308,6 +308,7 @@ Status Daemon::Open(const DaemonConfig& config) {
   RELIGHT_RETURN_IF_ERROR(m.LoadPatchFile(&p));
   m.engine_options.threads = config.engine_threads;
   m.engine_options.surface_emitters = !p.emitters.empty();
+  m.engine_options.keep_direct_inputs = false;  // nothing here reads them after Open
   RELIGHT_RETURN_IF_ERROR(m.engine.Open(config.bake_path, m.engine_options));
   RELIGHT_RETURN_IF_ERROR(hal::ResolvePatch(Luminaires(m.engine), &p));
   const std::string script = config.replay_path.empty() ? p.replay_script : config.replay_path;

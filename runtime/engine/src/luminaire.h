@@ -76,6 +76,13 @@ Q1_15 ClampUnit(Q1_15 v);
 Status SetUpLuminaires(const Bake& bake, std::vector<LuminaireRuntime>* lums,
                        CacheWorkspace* work);
 
+// Frees the bake's per-receiver direction and geometry of every luminaire
+// whose direct term now reads its DirectPoints (exact direct, axisymmetric
+// LID): the kernels read only their copy after SetUpLuminaires
+// (EngineOptions::keep_direct_inputs). A (C, gamma) LID keeps them: its
+// direct term reads them.
+void ReleasePreparedDirectInputs(Bake* bake, const std::vector<LuminaireRuntime>& lums);
+
 // Dobashi 4.1: sample `sample` of an axisymmetric LID moves to candela_q16;
 // Eq. 21 updates the weights by its increment alone, O(N), and marks the
 // luminaire dirty; *changed tells whether the sample moved. Returns kUnsupported (LID has planes), kInvalidArgument

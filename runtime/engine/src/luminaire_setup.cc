@@ -141,6 +141,17 @@ Status SetUpLuminaires(const Bake& bake, std::vector<LuminaireRuntime>* lums,
   return Status::Ok();
 }
 
+void ReleasePreparedDirectInputs(Bake* bake, const std::vector<LuminaireRuntime>& lums) {
+  for (size_t i = 0; i < lums.size(); ++i) {
+    BakeLuminaire& b = bake->luminaires[i];
+    if (b.direct_mode != DirectMode::kExactDirect || lums[i].has_table) continue;
+    for (BakeLightReceivers& rx : b.receivers) {
+      std::vector<int16_t>().swap(rx.direction);
+      std::vector<uint32_t>().swap(rx.geometry);
+    }
+  }
+}
+
 void ApplyZoom(BakeLuminaire* b, LuminaireRuntime* l, int64_t* samples) {
   const int M = l->lid_m;
   ZoomedLidSamplesQ16(b->zoom, l->state.zoom_deg, l->legendre_table_q30.data(), M, samples);

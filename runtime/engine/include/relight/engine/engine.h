@@ -49,6 +49,11 @@ struct EngineOptions {
   // hierarchical bake that is most of the engine's memory: relightd opens
   // this way when its patch has no [[emitter]].
   bool surface_emitters = true;
+  // false: once an axisymmetric luminaire's direct term has its own copy of
+  // the per-receiver direction and geometry (direct_aimed.h), the bake's are
+  // freed (9 MB on the 48-head stage); bake() then holds them empty, so it is
+  // no longer a whole bake to open again or write. relightd opens this way.
+  bool keep_direct_inputs = true;
 };
 
 class Engine {
@@ -69,6 +74,8 @@ class Engine {
   // Threads Update() runs on (the caller's included); 0 when closed.
   int thread_count() const;
 
+  // The bake as the engine holds it (see EngineOptions::keep_direct_inputs
+  // and surface_emitters for what it may have dropped).
   const Bake& bake() const;
   int luminaire_count() const;
   // Index of the luminaire called `name`, or -1.
