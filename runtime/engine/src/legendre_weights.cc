@@ -73,10 +73,14 @@ Status BuildLegendreTableQ30(int degree, int M, int32_t* table_q30) {
 
 void LegendreWeightsQ16(const int32_t* table_q30, int degree, int M, const int64_t* candela_q16,
                         int64_t* weights_q16) {
+  // A zoomed beam is dark past its field angle (most of the samples): its
+  // zeros add nothing, so the sums stop at the last lit sample.
+  int last = M;
+  while (last >= 0 && candela_q16[last] == 0) --last;
   for (int l = 0; l <= degree; ++l) {
     const int32_t* row = table_q30 + l * (M + 1);
     Int128 sum = 0;  // 2 * sum_k t_k I_k f_l, Q46
-    for (int k = 0; k <= M; ++k) {
+    for (int k = 0; k <= last; ++k) {
       sum += static_cast<Int128>(candela_q16[k]) * row[k] * TwiceTrapezoidWeight(k, M);
     }
     // Dobashi Eq. 19: w_l = (2l+1)/2 * (sum / 2) * dgamma.

@@ -33,24 +33,39 @@ struct PairVectors {
 static_assert(sizeof(PairVectors) == sizeof(TermPairVectors), "opaque storage fits");
 static_assert(alignof(PairVectors) <= alignof(TermPairVectors), "opaque storage aligned");
 
-__attribute__((target("avx2"))) PairVectors MakePair(const int32_t* ka, const int32_t* kb) {
-  PairVectors v;
-  for (int phase = 0; phase < 3; ++phase) {
-    alignas(32) int32_t lkh[8], lkl[8], hkh[8], hkl[8];
-    for (int i = 0; i < 8; ++i) {
-      const int cl = (phase + kLoOffsets[i]) % 3, ch = (phase + kHiOffsets[i]) % 3;
-      // Arithmetic shift: kh = floor(k / 2^12); kl = k - kh * 2^12 in [0, 2^12).
-      lkh[i] = Pack(ka[cl] >> 12, kb[cl] >> 12);
-      lkl[i] = Pack(ka[cl] & 0xFFF, kb[cl] & 0xFFF);
-      hkh[i] = Pack(ka[ch] >> 12, kb[ch] >> 12);
-      hkl[i] = Pack(ka[ch] & 0xFFF, kb[ch] & 0xFFF);
+// The channel each lane carries, per phase: lo lane i element e0 +
+// kLoOffsets[i], so channel (phase + kLoOffsets[i]) % 3 (hi likewise).
+struct LaneChannels {
+  int32_t lo[3][8], hi[3][8];
+  constexpr LaneChannels() : lo(), hi() {
+    for (int phase = 0; phase < 3; ++phase) {
+      for (int i = 0; i < 8; ++i) {
+        lo[phase][i] = (phase + kLoOffsets[i]) % 3;
+        hi[phase][i] = (phase + kHiOffsets[i]) % 3;
+      }
     }
-    v.lo_kh[phase] = _mm256_load_si256(reinterpret_cast<const __m256i*>(lkh));
-    v.lo_kl[phase] = _mm256_load_si256(reinterpret_cast<const __m256i*>(lkl));
-    v.hi_kh[phase] = _mm256_load_si256(reinterpret_cast<const __m256i*>(hkh));
-    v.hi_kl[phase] = _mm256_load_si256(reinterpret_cast<const __m256i*>(hkl));
   }
-  return v;
+};
+alignas(32) constexpr LaneChannels kLaneChannels;
+
+// Each lane's packed halves are one of three per channel: packed once, then
+// spread over the lanes by a permute per vector (this runs per term pair and
+// per call, twice per moved luminaire; the per-lane modulo loop it replaced
+// was 4 % of a stage frame).
+__attribute__((target("avx2"))) void MakePair(const int32_t* ka, const int32_t* kb, PairVectors* v) {
+  // Arithmetic shift: kh = floor(k / 2^12); kl = k - kh * 2^12 in [0, 2^12).
+  const __m256i kh = _mm256_setr_epi32(Pack(ka[0] >> 12, kb[0] >> 12), Pack(ka[1] >> 12, kb[1] >> 12),
+                                       Pack(ka[2] >> 12, kb[2] >> 12), 0, 0, 0, 0, 0);
+  const __m256i kl = _mm256_setr_epi32(Pack(ka[0] & 0xFFF, kb[0] & 0xFFF), Pack(ka[1] & 0xFFF, kb[1] & 0xFFF),
+                                       Pack(ka[2] & 0xFFF, kb[2] & 0xFFF), 0, 0, 0, 0, 0);
+  for (int phase = 0; phase < 3; ++phase) {
+    const __m256i lo = _mm256_load_si256(reinterpret_cast<const __m256i*>(kLaneChannels.lo[phase]));
+    const __m256i hi = _mm256_load_si256(reinterpret_cast<const __m256i*>(kLaneChannels.hi[phase]));
+    v->lo_kh[phase] = _mm256_permutevar8x32_epi32(kh, lo);
+    v->lo_kl[phase] = _mm256_permutevar8x32_epi32(kl, lo);
+    v->hi_kh[phase] = _mm256_permutevar8x32_epi32(kh, hi);
+    v->hi_kl[phase] = _mm256_permutevar8x32_epi32(kl, hi);
+  }
 }
 
 // Widens four int32 lanes (the low or high 128 bits of s) to int64.
@@ -72,8 +87,7 @@ __attribute__((target("avx2"))) void BuildTermPairsAvx2(const uint16_t* terms, u
     const uint32_t ia = 2 * p, ib = ia + 1;
     // An odd term count pairs the last term with itself times zero.
     const int32_t* kb = ib < term_count ? k + 3 * terms[ib] : kZero;
-    const PairVectors v = MakePair(k + 3 * terms[ia], kb);
-    __builtin_memcpy(pairs[p].bytes, &v, sizeof v);
+    MakePair(k + 3 * terms[ia], kb, reinterpret_cast<PairVectors*>(pairs[p].bytes));
   }
 }
 

@@ -39,9 +39,23 @@ void ZoomedLidSamplesQ16(const BakeZoom& zoom, Q16_16 beam_deg, const int32_t* s
   const Int128 den = static_cast<Int128>(M) * beam_deg.raw() * zoom.profile_end;
   const Int128 num_per_k = static_cast<Int128>(360) * (static_cast<int64_t>(zoom.profile.size()) - 1)
                            << 48;
-  for (int k = 0; k <= M; ++k) {
-    out[k] = ProfileQ30(zoom, num_per_k * k / den) << kUnitShift;
+  // pos_k = floor(k num_per_k / den), stepped without a division per sample
+  // (both are positive: M, the clamped beam and profile_end are); past the
+  // profile's end every further sample is 0.
+  const Int128 step = num_per_k / den, step_rem = num_per_k % den;
+  Int128 pos = 0, rem = 0;
+  int lit = 0;
+  for (; lit <= M; ++lit) {
+    out[lit] = ProfileQ30(zoom, pos) << kUnitShift;
+    if (pos > (static_cast<Int128>(zoom.profile.size() - 1) << 16)) break;
+    pos += step;
+    rem += step_rem;
+    if (rem >= den) {
+      pos += 1;
+      rem -= den;
+    }
   }
+  for (; lit <= M; ++lit) out[lit] = 0;
   int64_t w0_unit_q16 = 0;  // flux / 4 pi of the unit beam (Eq. 19, l = 0)
   LegendreWeightsQ16(sin_row_q30, 0, M, out, &w0_unit_q16);
   if (w0_unit_q16 <= 0) {  // a beam narrower than the sample spacing: all light on the axis
@@ -50,6 +64,7 @@ void ZoomedLidSamplesQ16(const BakeZoom& zoom, Q16_16 beam_deg, const int32_t* s
   }
   const Int128 scale_den = static_cast<Int128>(kFourPiQ30) * w0_unit_q16;
   for (int k = 0; k <= M; ++k) {
+    if (out[k] == 0) continue;  // the dark samples stay 0
     const Int128 v = DivRound((static_cast<Int128>(out[k]) * zoom.lumens) << 30, scale_den);
     out[k] = v > bake_format::kMaxCandelaRaw ? bake_format::kMaxCandelaRaw : static_cast<int64_t>(v);
   }
