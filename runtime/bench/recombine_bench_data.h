@@ -21,6 +21,14 @@ namespace relight_bench {
 inline void CompressedShapes(benchmark::internal::Benchmark* b) {
   b->Args({16384, 81, 8, 512})->Args({16384, 81, 16, 512})->Args({100000, 81, 8, 512})->Args({100000, 81, 16, 512});
 }
+// The same shapes with a fifth argument, the weights' bits (16, 8).
+inline void CompressedShapesWithBits(benchmark::internal::Benchmark* b) {
+  for (int64_t bits : {16, 8}) {
+    for (int64_t receivers : {16384, 100000}) {
+      for (int64_t r : {8, 16}) b->Args({receivers, 81, r, 512, bits});
+    }
+  }
+}
 
 // Smooth-ish random int16 data: what the bake's quantised bases look like to
 // the memory system (values do not change the kernel's speed).
@@ -54,8 +62,9 @@ inline std::vector<int32_t> MakeMultipliers(uint32_t terms) {
 // A harder baseline: the same bytes read with 256-bit loads into four
 // independent accumulators (what the load ports allow, not just what a plain
 // loop gets). Reported beside the plain one, as "ratio_simd".
-__attribute__((target("avx2"))) inline uint64_t SumWordsSimd(const std::vector<int16_t>& basis) {
-  const size_t vectors = basis.size() * sizeof(int16_t) / sizeof(__m256i);
+template <typename T>
+__attribute__((target("avx2"))) inline uint64_t SumWordsSimd(const std::vector<T>& basis) {
+  const size_t vectors = basis.size() * sizeof(T) / sizeof(__m256i);
   const __m256i* p = reinterpret_cast<const __m256i*>(basis.data());
   __m256i s0 = _mm256_setzero_si256(), s1 = s0, s2 = s0, s3 = s0;
   size_t i = 0;
@@ -79,9 +88,10 @@ inline double Median(std::vector<double> v) {
 
 // A compressed basis (bake.h BakeCompressedBasis) of `terms` terms over
 // `receivers` in clusters of `cluster` receivers with r components, random
-// values in range (values do not change the kernel's speed).
+// values in range (values do not change the kernel's speed); weight_bits 8
+// gives the engine's byte tiles (weights8) as a CPC8 basis has them.
 inline relight::BakeCompressedBasis MakeCompressed(uint32_t terms, uint32_t receivers, uint32_t r,
-                                            uint32_t cluster) {
+                                            uint32_t cluster, uint8_t weight_bits = 16) {
   relight::BakeCompressedBasis c;
   c.components = r;
   for (uint32_t s = 0; s < receivers; s += cluster) c.cluster_start.push_back(s);
@@ -90,9 +100,16 @@ inline relight::BakeCompressedBasis MakeCompressed(uint32_t terms, uint32_t rece
   c.vectors = MakeBasis(terms, static_cast<uint32_t>(vectors));
   c.vector_scale.assign(size_t{terms} * 3, relight::QuantScale{1 << 29, -20});
   std::mt19937 rng(11);
-  std::uniform_int_distribution<int> w(-relight::kCompressedWeightOne, relight::kCompressedWeightOne);
-  c.weights.resize(size_t{receivers} * r);
-  for (int16_t& q : c.weights) q = static_cast<int16_t>(w(rng));
+  const int one = relight::CompressedWeightOne(weight_bits);
+  std::uniform_int_distribution<int> w(-one, one);
+  c.weight_bits = weight_bits;
+  if (weight_bits == 8) {
+    c.weights8.resize(size_t{receivers} * r);
+    for (int8_t& q : c.weights8) q = static_cast<int8_t>(w(rng));
+  } else {
+    c.weights.resize(size_t{receivers} * r);
+    for (int16_t& q : c.weights) q = static_cast<int16_t>(w(rng));
+  }
   c.weight_order = relight::CompressedWeightOrder::kTiles16;  // random values: read as the engine's order
   return c;
 }

@@ -83,13 +83,14 @@ template <typename W>
 void ClusterOnActivePath(const W* w, uint32_t n, uint32_t components, const ClusterMultipliers& m,
                          int32_t* out) {
   uint32_t done = 0;
-  // Negative shifts (saturating left shifts) are rare: the scalar path takes them.
+  const SimdLevel level = ActiveSimdLevel();
+  if (level == SimdLevel::kAvx512Vnni) {
+    CompressedClusterAvx512VnniQ12(w, n, components, m, out);  // every receiver and shift, tail masked
+    return;
+  }
+  // Negative shifts (saturating left shifts: bright clusters, mostly with
+  // 8-bit weights) take the scalar path below 512 bits.
   if (m.shift[0] >= 0 && m.shift[1] >= 0 && m.shift[2] >= 0) {
-    const SimdLevel level = ActiveSimdLevel();
-    if (level == SimdLevel::kAvx512Vnni) {
-      CompressedClusterAvx512VnniQ12(w, n, components, m, out);  // every receiver, tail masked
-      return;
-    }
     if (level >= SimdLevel::kAvx2 && n >= 16) {
       done = n - n % 16;
       if (level == SimdLevel::kAvxVnni) {

@@ -36,9 +36,11 @@ int32_t CompressedMultiplierLimit(uint32_t components, int32_t weight_one = kCom
 // i.e. q = weight_one, 16383 or 127):
 //   K_j = round(P_j 2^s / weight_one), halves away from zero, with
 //   s the largest in [-31, 31] that keeps every |K_j| <= CompressedMultiplierLimit(r, weight_one).
-//   s < 0 only for a component worth more than about 2^30 / r LightQ12
-//   (16384 cd/m^2 at r = 16) at its largest weight: a bright beam in an
-//   all-in-SH basis; its receivers then take the scalar path.
+//   s < 0 only for a component worth more than limit x weight_one LightQ12
+//   at its largest weight: 16384 cd/m^2 at r = 16 with 16-bit weights (a
+//   bright beam in an all-in-SH basis), 508 cd/m^2 with 8-bit ones (their
+//   multipliers meet the int16 cap first). The AVX-512 body finishes those
+//   in int64; the 256-bit paths leave them to the scalar one.
 void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, int32_t weight_one,
                            ClusterMultipliers* m);
 
@@ -66,8 +68,8 @@ void CompressedClusterTailQ12(const int16_t* w, uint32_t from, uint32_t n, uint3
                               const ClusterMultipliers& m, int32_t* out);
 void CompressedClusterTailQ12(const int8_t* w, uint32_t from, uint32_t n, uint32_t components,
                               const ClusterMultipliers& m, int32_t* out);
-// Same, on the active vector path (recombine_dispatch.h: AVX-512 VNNI,
-// AVX-VNNI or AVX2) when every shift is >= 0.
+// Same, on the active vector path (recombine_dispatch.h): AVX-512 VNNI at
+// every shift, AVX-VNNI or AVX2 when every shift is >= 0.
 void CompressedClusterQ12(const int16_t* w, uint32_t n, uint32_t components,
                           const ClusterMultipliers& m, int32_t* out);
 void CompressedClusterQ12(const int8_t* w, uint32_t n, uint32_t components,

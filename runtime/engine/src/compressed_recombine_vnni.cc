@@ -117,6 +117,27 @@ RELIGHT_TARGET_AVX512_VNNI inline void AccumulateTile(const W* tile, uint32_t co
   }
 }
 
+// One channel's finish (compressed_recombine.h): mean + (acc + half) >> s
+// for s >= 0 (half is already in acc); for s < 0 (a bright cluster: the
+// multipliers took a left shift) mean + acc 2^-s in int64, saturated to
+// int32 like the scalar path.
+struct ChannelFinish {
+  __m512i mean, mean64;
+  __m128i shift;
+  bool left = false;
+};
+
+RELIGHT_TARGET_AVX512_VNNI inline __m512i Finish(__m512i acc, const ChannelFinish& f) {
+  if (!f.left) return _mm512_add_epi32(f.mean, _mm512_sra_epi32(acc, f.shift));
+  // |acc| < 2^30, shifted by at most 31, plus |mean| < 2^30: within int64.
+  const __m512i lo = _mm512_add_epi64(f.mean64, _mm512_sll_epi64(_mm512_cvtepi32_epi64(_mm512_castsi512_si256(acc)), f.shift));
+  const __m512i hi =
+      _mm512_add_epi64(f.mean64, _mm512_sll_epi64(_mm512_cvtepi32_epi64(_mm512_extracti64x4_epi64(acc, 1)), f.shift));
+  return _mm512_inserti64x4(_mm512_castsi256_si512(_mm512_cvtsepi64_epi32(lo)), _mm512_cvtsepi64_epi32(hi), 1);
+}
+
+// Every shift, negative ones included (the 256-bit bodies leave those to the
+// scalar path).
 template <typename W>
 RELIGHT_TARGET_AVX512_VNNI void ClusterAvx512Vnni(const W* w, uint32_t n, uint32_t components,
                                                  const ClusterMultipliers& m, int32_t* out) {
@@ -126,13 +147,15 @@ RELIGHT_TARGET_AVX512_VNNI void ClusterAvx512Vnni(const W* w, uint32_t n, uint32
   for (int ch = 0; ch < 3; ++ch) {
     for (uint32_t p = 0; p < (components + 1) / 2; ++p) k[ch][p] = _mm512_set1_epi32(packed[ch][p]);
   }
-  __m512i half[3], mean[3];
-  __m128i shift[3];
+  __m512i half[3];
+  ChannelFinish finish[3];
   for (int ch = 0; ch < 3; ++ch) {
     const int s = m.shift[ch];
     half[ch] = _mm512_set1_epi32(s > 0 ? int32_t{1} << (s - 1) : 0);
-    mean[ch] = _mm512_set1_epi32(m.mean[ch]);
-    shift[ch] = _mm_cvtsi32_si128(s);
+    finish[ch].mean = _mm512_set1_epi32(m.mean[ch]);
+    finish[ch].mean64 = _mm512_set1_epi64(m.mean[ch]);
+    finish[ch].left = s < 0;
+    finish[ch].shift = _mm_cvtsi32_si128(s < 0 ? -s : s);
   }
   uint32_t i0 = 0;
   // Two full tiles a step: six independent vpdpwssd chains.
@@ -142,8 +165,8 @@ RELIGHT_TARGET_AVX512_VNNI void ClusterAvx512Vnni(const W* w, uint32_t n, uint32
     AccumulateTile(tile, 16, components, k, a);
     AccumulateTile(tile + 16 * components, 16, components, k, b);
     for (int ch = 0; ch < 3; ++ch) {
-      a[ch] = _mm512_add_epi32(mean[ch], _mm512_sra_epi32(a[ch], shift[ch]));
-      b[ch] = _mm512_add_epi32(mean[ch], _mm512_sra_epi32(b[ch], shift[ch]));
+      a[ch] = Finish(a[ch], finish[ch]);
+      b[ch] = Finish(b[ch], finish[ch]);
     }
     StoreRgb(a, 16, out + size_t{i0} * 3);
     StoreRgb(b, 16, out + size_t{i0} * 3 + 48);
@@ -153,7 +176,7 @@ RELIGHT_TARGET_AVX512_VNNI void ClusterAvx512Vnni(const W* w, uint32_t n, uint32
     const uint32_t count = n - i0 < 16 ? n - i0 : 16;
     __m512i a[3] = {half[0], half[1], half[2]};
     AccumulateTile(w + size_t{i0} * components, count, components, k, a);
-    for (int ch = 0; ch < 3; ++ch) a[ch] = _mm512_add_epi32(mean[ch], _mm512_sra_epi32(a[ch], shift[ch]));
+    for (int ch = 0; ch < 3; ++ch) a[ch] = Finish(a[ch], finish[ch]);
     StoreRgb(a, count, out + size_t{i0} * 3);
   }
 }
