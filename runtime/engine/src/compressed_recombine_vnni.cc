@@ -130,10 +130,11 @@ struct ChannelFinish {
 RELIGHT_TARGET_AVX512_VNNI inline __m512i Finish(__m512i acc, const ChannelFinish& f) {
   if (!f.left) return _mm512_add_epi32(f.mean, _mm512_sra_epi32(acc, f.shift));
   // |acc| < 2^30, shifted by at most 31, plus |mean| < 2^30: within int64.
-  const __m512i lo = _mm512_add_epi64(f.mean64, _mm512_sll_epi64(_mm512_cvtepi32_epi64(_mm512_castsi512_si256(acc)), f.shift));
-  const __m512i hi =
-      _mm512_add_epi64(f.mean64, _mm512_sll_epi64(_mm512_cvtepi32_epi64(_mm512_extracti64x4_epi64(acc, 1)), f.shift));
-  return _mm512_inserti64x4(_mm512_castsi256_si512(_mm512_cvtsepi64_epi32(lo)), _mm512_cvtsepi64_epi32(hi), 1);
+  const __m512i wide_lo = _mm512_cvtepi32_epi64(_mm512_castsi512_si256(acc));
+  const __m512i wide_hi = _mm512_cvtepi32_epi64(_mm512_extracti64x4_epi64(acc, 1));
+  const __m256i lo = _mm512_cvtsepi64_epi32(_mm512_add_epi64(f.mean64, _mm512_sll_epi64(wide_lo, f.shift)));
+  const __m256i hi = _mm512_cvtsepi64_epi32(_mm512_add_epi64(f.mean64, _mm512_sll_epi64(wide_hi, f.shift)));
+  return _mm512_inserti64x4(_mm512_castsi256_si512(lo), hi, 1);
 }
 
 // Every shift, negative ones included (the 256-bit bodies leave those to the

@@ -19,8 +19,9 @@ namespace relight {
 // AVX-512 (F, BW, VL, VNNI), two 16-receiver tiles (compressed_tiles.h) a
 // step in 512-bit registers; the cluster's short last tile with masked loads
 // and stores, so it does receivers [0, n), all of them, at every shift (a
-// negative one finishes in int64 and saturates, as the scalar path). Per tile and component pair: one load, already the
-// 16 receivers' int16 pairs, and three vpdpwssd (one per channel); an odd
+// negative one finishes in int64 and saturates, as the scalar path). Per
+// tile and component pair: one load, already the 16 receivers' int16 pairs,
+// and three vpdpwssd (one per channel); an odd
 // count's last component zero-extended to (w, 0) pairs; then per channel a
 // shift and the mean, and 6 vpermt2d interleave R, G, B.
 void CompressedClusterAvx512VnniQ12(const int16_t* w, uint32_t n, uint32_t components,

@@ -52,12 +52,15 @@ alignas(32) constexpr LaneChannels kLaneChannels;
 // spread over the lanes by a permute per vector (this runs per term pair and
 // per call, twice per moved luminaire; the per-lane modulo loop it replaced
 // was 4 % of a stage frame).
-__attribute__((target("avx2"))) void MakePair(const int32_t* ka, const int32_t* kb, PairVectors* v) {
+__attribute__((target("avx2"))) void MakePair(const int32_t* ka, const int32_t* kb,
+                                              PairVectors* v) {
   // Arithmetic shift: kh = floor(k / 2^12); kl = k - kh * 2^12 in [0, 2^12).
-  const __m256i kh = _mm256_setr_epi32(Pack(ka[0] >> 12, kb[0] >> 12), Pack(ka[1] >> 12, kb[1] >> 12),
-                                       Pack(ka[2] >> 12, kb[2] >> 12), 0, 0, 0, 0, 0);
-  const __m256i kl = _mm256_setr_epi32(Pack(ka[0] & 0xFFF, kb[0] & 0xFFF), Pack(ka[1] & 0xFFF, kb[1] & 0xFFF),
-                                       Pack(ka[2] & 0xFFF, kb[2] & 0xFFF), 0, 0, 0, 0, 0);
+  const __m256i kh =
+      _mm256_setr_epi32(Pack(ka[0] >> 12, kb[0] >> 12), Pack(ka[1] >> 12, kb[1] >> 12),
+                        Pack(ka[2] >> 12, kb[2] >> 12), 0, 0, 0, 0, 0);
+  const __m256i kl =
+      _mm256_setr_epi32(Pack(ka[0] & 0xFFF, kb[0] & 0xFFF), Pack(ka[1] & 0xFFF, kb[1] & 0xFFF),
+                        Pack(ka[2] & 0xFFF, kb[2] & 0xFFF), 0, 0, 0, 0, 0);
   for (int phase = 0; phase < 3; ++phase) {
     const __m256i lo = _mm256_load_si256(reinterpret_cast<const __m256i*>(kLaneChannels.lo[phase]));
     const __m256i hi = _mm256_load_si256(reinterpret_cast<const __m256i*>(kLaneChannels.hi[phase]));
