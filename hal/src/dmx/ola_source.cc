@@ -33,6 +33,8 @@ struct DmxOlaSource::Impl {
   std::condition_variable wake;
   std::atomic<bool> stop{false};
   std::atomic<bool> is_connected{false};
+  // A registration failed on this connection: it is dropped and made again.
+  std::atomic<bool> registration_failed{false};
   std::atomic<uint32_t> frames{0};
   std::unique_ptr<ola::client::OlaClientWrapper> first;  // connected by Start()
   std::thread thread;
@@ -51,10 +53,16 @@ struct DmxOlaSource::Impl {
     changes.OnFrame(meta.universe, data.GetRaw(), data.Size(), now_us);
   }
 
+  // A refused registration leaves the connection deaf to that universe. Most
+  // often the channel closed under it (olad going away just as we connected:
+  // seen in CI, where the close handler then never ran and the source stayed
+  // "connected" to nothing), so the connection is dropped and made again
+  // after reconnect_ms rather than kept.
   void OnRegistered(unsigned universe, const ola::client::Result& result) {
-    if (!result.Success()) {
-      Log(LogLevel::kError, "dmx-ola: olad refused universe %u: %s", universe, result.Error().c_str());
-    }
+    if (result.Success()) return;
+    Log(LogLevel::kError, "dmx-ola: olad refused universe %u: %s; connecting again in %d ms", universe,
+        result.Error().c_str(), config.reconnect_ms);
+    registration_failed.store(true);
   }
 
   void OnClose() {
@@ -63,8 +71,10 @@ struct DmxOlaSource::Impl {
     if (ss != nullptr) ss->Terminate();
   }
 
+  // Also ends a connection whose registration failed (the callback may come
+  // before the loop runs, so the loop checks the flag itself).
   bool CheckStop() {
-    if (stop.load()) {
+    if (stop.load() || registration_failed.load()) {
       std::lock_guard<std::mutex> lock(mu);
       if (ss != nullptr) ss->Terminate();
     }
@@ -113,6 +123,10 @@ struct DmxOlaSource::Impl {
       }
       Serve(*wrapper);
       wrapper.reset();
+      if (registration_failed.exchange(false)) {
+        std::unique_lock<std::mutex> lock(mu);
+        wake.wait_for(lock, std::chrono::milliseconds(config.reconnect_ms), [&] { return stop.load(); });
+      }
     }
   }
 };
