@@ -18,16 +18,23 @@ namespace relight_bench {
 
 // The compressed shapes every compressed benchmark runs (receivers, terms,
 // components, cluster size), so the paths and the baseline compare alike.
-inline void CompressedShapes(benchmark::internal::Benchmark* b) {
-  b->Args({16384, 81, 8, 512})->Args({16384, 81, 16, 512})->Args({100000, 81, 8, 512})->Args({100000, 81, 16, 512});
-}
-// The same shapes with a fifth argument, the weights' bits (16, 8).
-inline void CompressedShapesWithBits(benchmark::internal::Benchmark* b) {
-  for (int64_t bits : {16, 8}) {
-    for (int64_t receivers : {16384, 100000}) {
-      for (int64_t r : {8, 16}) b->Args({receivers, 81, r, 512, bits});
+// Args {receivers, 81 terms, r, 512}, then `bits` (if not 0) as a fifth.
+inline void CompressedShapeArgs(benchmark::internal::Benchmark* b, int64_t bits) {
+  for (int64_t receivers : {16384, 100000}) {
+    for (int64_t r : {8, 16}) {
+      if (bits == 0) {
+        b->Args({receivers, 81, r, 512});
+      } else {
+        b->Args({receivers, 81, r, 512, bits});
+      }
     }
   }
+}
+inline void CompressedShapes(benchmark::internal::Benchmark* b) { CompressedShapeArgs(b, 0); }
+// The same shapes with a fifth argument, the weights' bits (16, 8).
+inline void CompressedShapesWithBits(benchmark::internal::Benchmark* b) {
+  CompressedShapeArgs(b, 16);
+  CompressedShapeArgs(b, 8);
 }
 
 // Smooth-ish random int16 data: what the bake's quantised bases look like to

@@ -421,6 +421,17 @@ TEST_F(EngineTest, OutputViewsCoverTheirReceivers) {
   EXPECT_FALSE(total.empty());
 }
 
+// Every vertex luminance and the first grid's 27 illuminances (total and
+// direct) of two engines, bit for bit.
+void ExpectSameResults(const Engine& a, const Engine& b) {
+  const uint32_t n = a.vertex_count() * 3;
+  for (uint32_t i = 0; i < n; ++i) ASSERT_EQ(a.vertex_luminance().raw()[i], b.vertex_luminance().raw()[i]);
+  for (uint32_t i = 0; i < 27; ++i) {
+    ASSERT_EQ(a.grid_illuminance(0).raw()[i], b.grid_illuminance(0).raw()[i]);
+    ASSERT_EQ(a.grid_direct_illuminance(0).raw()[i], b.grid_direct_illuminance(0).raw()[i]);
+  }
+}
+
 TEST_F(EngineTest, ResultDoesNotDependOnTheOrderOfSetCalls) {
   Engine other;
   ASSERT_TRUE(other.Open(MakeBake(scene_)).ok());
@@ -438,12 +449,7 @@ TEST_F(EngineTest, ResultDoesNotDependOnTheOrderOfSetCalls) {
   other.Update();
   ASSERT_TRUE(other.SetPanTilt(0, Deg(12.5), Deg(33)).ok());
   other.Update();
-  const uint32_t n = engine_.vertex_count() * 3;
-  for (uint32_t i = 0; i < n; ++i) ASSERT_EQ(engine_.vertex_luminance().raw()[i], other.vertex_luminance().raw()[i]);
-  for (uint32_t i = 0; i < 27; ++i) {
-    ASSERT_EQ(engine_.grid_illuminance(0).raw()[i], other.grid_illuminance(0).raw()[i]);
-    ASSERT_EQ(engine_.grid_direct_illuminance(0).raw()[i], other.grid_direct_illuminance(0).raw()[i]);
-  }
+  ASSERT_NO_FATAL_FAILURE(ExpectSameResults(engine_, other));
   CheckAgainstFloat("mixed state");
 }
 
@@ -469,12 +475,7 @@ TEST_F(EngineTest, FreeingTheCopiedDirectInputsChangesNoResult) {
     ASSERT_TRUE(e->SetDimmer(0, Level(0.7)).ok());
     e->Update();
   }
-  const uint32_t n = engine_.vertex_count() * 3;
-  for (uint32_t i = 0; i < n; ++i) ASSERT_EQ(engine_.vertex_luminance().raw()[i], other.vertex_luminance().raw()[i]);
-  for (uint32_t i = 0; i < 27; ++i) {
-    ASSERT_EQ(engine_.grid_illuminance(0).raw()[i], other.grid_illuminance(0).raw()[i]);
-    ASSERT_EQ(engine_.grid_direct_illuminance(0).raw()[i], other.grid_direct_illuminance(0).raw()[i]);
-  }
+  ASSERT_NO_FATAL_FAILURE(ExpectSameResults(engine_, other));
 }
 
 TEST_F(EngineTest, ADarkLuminaireIsRebuiltWhenLit) {

@@ -43,11 +43,12 @@ void ZoomedLidSamplesQ16(const BakeZoom& zoom, Q16_16 beam_deg, const int32_t* s
   // (both are positive: M, the clamped beam and profile_end are); past the
   // profile's end every further sample is 0.
   const Int128 step = num_per_k / den, step_rem = num_per_k % den;
+  const Int128 end_q16 = static_cast<Int128>(zoom.profile.size() - 1) << 16;
   Int128 pos = 0, rem = 0;
   int lit = 0;
   for (; lit <= M; ++lit) {
     out[lit] = ProfileQ30(zoom, pos) << kUnitShift;
-    if (pos > (static_cast<Int128>(zoom.profile.size() - 1) << 16)) break;
+    if (pos > end_q16) break;
     pos += step;
     rem += step_rem;
     if (rem >= den) {
