@@ -14,6 +14,7 @@
 #include "relight/hal/param_text.h"
 #include "relight/hal/replay_source.h"
 #include "relight/hal/source_factory.h"
+#include "relight/render/compiler_pages.h"
 
 namespace relight::daemon {
 
@@ -289,6 +290,23 @@ struct Daemon::Impl {
     }
     return Status::Ok();
   }
+
+  // Once, after the second drawn frame: by then llvmpipe has compiled every
+  // shader this pipeline uses (the second draw at a camera adds the
+  // triangle-ID pass, osmesa_frame.h), so libLLVM's pages go back to the kernel.
+  static void ReleaseCompilerPages() {
+    const int64_t start_us = MonotonicUs();
+    render::PagesReleased released;
+    const Status st = render::ReleaseShaderCompilerPages(&released);
+    if (!st.ok()) {
+      Log(LogLevel::kInfo, "relightd: shader compiler pages kept: %s", st.ToString().c_str());
+      return;
+    }
+    if (released.mappings == 0) return;
+    Log(LogLevel::kInfo, "relightd: frames flowing; handed the shader compiler's pages back to the kernel "
+        "(%d read-only mappings, %.1f MB mapped, %.1f ms)", released.mappings,
+        static_cast<double>(released.bytes) / 1e6, static_cast<double>(MonotonicUs() - start_us) / 1e3);
+  }
 };
 
 Daemon::Daemon() : impl_(std::make_unique<Impl>()) {}
@@ -395,6 +413,7 @@ Status Daemon::Run(const std::atomic<bool>& stop, std::atomic<bool>& reload) {
     }
     RELIGHT_RETURN_IF_ERROR(m.WriteSinks(frame));
     const int64_t out_us = MonotonicUs();
+    if (render && m.stats.renders == 2 && m.config.release_compiler_pages) Impl::ReleaseCompilerPages();
 
     const int64_t shown_arrival_us = render ? pending_arrival_us : 0;
     if (shown_arrival_us > 0) {
