@@ -97,7 +97,7 @@ TEST(Daemon, TheShaderCompilerLeavesTheResidentSetAfterTwoFrames) {
     c.replay_path = WriteTemp(std::string("pages_") + (release ? "r" : "k") + ".replay", kScript);
     c.script_time = true;
     c.exit_when_replay_done = true;
-    c.release_compiler_pages = release;
+    c.release_startup_memory = release;
     Daemon d;
     ASSERT_TRUE(d.Open(c).ok());
     const Status st = RunToEnd(d);

@@ -98,7 +98,9 @@ struct Floor {
   uint32_t n = 0;
 };
 
-Floor MakeFloor(int side) {
+// blank_rows: rows [0, blank_rows) get no geometry either (a strip no
+// luminaire sees: whole blocks of it keep no points).
+Floor MakeFloor(int side, int blank_rows = 0) {
   Floor f;
   f.n = static_cast<uint32_t>(side * side);
   for (int y = 0; y < side; ++y) {
@@ -106,7 +108,8 @@ Floor MakeFloor(int side) {
       const double d[3] = {-20.0 + 40.0 * x / (side - 1), -20.0 + 40.0 * y / (side - 1), -6.0};
       const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
       for (double c : d) f.direction.push_back(static_cast<int16_t>(std::lround(c / len * 16384)));
-      f.geometry.push_back((x * 7 + y) % 97 == 0 ? 0u : static_cast<uint32_t>(6.0 / (len * len * len) * 4e9));
+      const bool none = (x * 7 + y) % 97 == 0 || y < blank_rows;
+      f.geometry.push_back(none ? 0u : static_cast<uint32_t>(6.0 / (len * len * len) * 4e9));
     }
   }
   std::vector<uint16_t> albedo(static_cast<size_t>(f.n) * 3);
@@ -121,7 +124,9 @@ Floor MakeFloor(int side) {
 TEST(DirectCull, SkippedBlocksGiveTheSameValues) {
   Floor f = MakeFloor(150);
   DirectPoints unculled = f.points;  // every block's cone wider than any beam
-  for (DirectBlock& b : unculled.blocks) b.half_angle = uint32_t{1} << 31;
+  for (DirectBlock& b : unculled.blocks) {
+    if (b.half_angle != kNoPoints) b.half_angle = uint32_t{1} << 31;  // an empty block has no points to read
+  }
   const GammaTable& t = SharedGammaTable();
   std::mt19937_64 rng(21);
   int skipped = 0, blocks = 0;
@@ -161,6 +166,40 @@ TEST(DirectCull, SkippedBlocksGiveTheSameValues) {
   }
   std::printf("  %d of %d blocks skipped\n", skipped, blocks);
   EXPECT_GT(skipped, blocks / 4);  // the test must exercise the skip
+}
+
+TEST(DirectCull, BlocksNoLightReachesKeepNoPointsAndGiveZero) {
+  constexpr int kSide = 150, kBlank = 40;  // 6000 receivers unseen: 187 whole blocks
+  const Floor blank = MakeFloor(kSide, kBlank), full = MakeFloor(kSide);
+  size_t empty = 0;
+  for (const DirectBlock& b : blank.points.blocks) empty += b.half_angle == kNoPoints ? 1 : 0;
+  EXPECT_GE(empty, size_t{kSide * kBlank / kDirectBlockPoints - 1});
+  EXPECT_EQ(blank.points.count, blank.n);
+  EXPECT_EQ(blank.points.points.size(), size_t{blank.n} - empty * kDirectBlockPoints);
+  EXPECT_EQ(blank.points.shift, full.points.shift);  // the brightest receiver is seen in both
+  const GammaTable& t = SharedGammaTable();
+  std::mt19937_64 rng(5);
+  const std::vector<int64_t> lid = CutLid(180, 60, &rng);
+  for (double tilt : {0.0, 40.0, 80.0}) {
+    int32_t axis[3];
+    BeamAxisQ30(Mounting::kHanging, Q16_16::FromRatio(0, 1), Q16_16::FromRatio(std::llround(tilt * 1000), 1000),
+                axis);
+    for (DirectStore store : {DirectStore::kWrite, DirectStore::kAdd}) {
+      std::vector<int32_t> a(static_cast<size_t>(blank.n) * 3, 77), b = a;
+      DirectLightAimedQ12(blank.points, t, axis, lid.data(), 180, blank.rho.data(), store, a.data());
+      DirectLightAimedQ12(full.points, t, axis, lid.data(), 180, full.rho.data(), store, b.data());
+      for (uint32_t i = 0; i < blank.n; ++i) {
+        for (int c = 0; c < 3; ++c) {
+          const size_t k = size_t{i} * 3 + static_cast<size_t>(c);
+          if (i < uint32_t{kSide * kBlank}) {
+            ASSERT_EQ(a[k], store == DirectStore::kWrite ? 0 : 77) << "unseen receiver " << i;
+          } else {
+            ASSERT_EQ(a[k], b[k]) << "receiver " << i << " tilt " << tilt;
+          }
+        }
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -478,6 +478,29 @@ TEST_F(EngineTest, FreeingTheCopiedDirectInputsChangesNoResult) {
   ASSERT_NO_FATAL_FAILURE(ExpectSameResults(engine_, other));
 }
 
+TEST_F(EngineTest, DroppingTheGridsChangesNoVertex) {
+  EngineOptions no_grids;
+  no_grids.grids = false;
+  Engine other;
+  ASSERT_TRUE(other.Open(MakeBake(scene_), no_grids).ok());
+  ASSERT_FALSE(engine_.grid_illuminance(0).empty());  // the scene has a grid ...
+  EXPECT_TRUE(other.grid_illuminance(0).empty());      // ... that this engine dropped
+  EXPECT_TRUE(other.grid_direct_illuminance(0).empty());
+  EXPECT_TRUE(other.bake().grids.empty());
+  for (const BakeLuminaire& b : other.bake().luminaires) EXPECT_EQ(b.receivers.size(), 1u);
+  for (Engine* e : {&engine_, &other}) {
+    ASSERT_TRUE(e->SetPanTilt(0, Deg(-35), Deg(20)).ok());
+    ASSERT_TRUE(e->SetPanTilt(1, Deg(15), Deg(40)).ok());
+    ASSERT_TRUE(e->SetColour(1, Level(0.9), Level(0.4), Level(0.1)).ok());
+    e->Update();
+  }
+  const uint32_t n = engine_.vertex_count() * 3;
+  ASSERT_EQ(other.vertex_count() * 3, n);
+  for (uint32_t i = 0; i < n; ++i) {
+    ASSERT_EQ(engine_.vertex_luminance().raw()[i], other.vertex_luminance().raw()[i]) << i;
+  }
+}
+
 TEST_F(EngineTest, ADarkLuminaireIsRebuiltWhenLit) {
   ASSERT_TRUE(engine_.SetDimmer(0, Level(0)).ok());
   ASSERT_TRUE(engine_.SetPanTilt(0, Deg(-70), Deg(25)).ok());

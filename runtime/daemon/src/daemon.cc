@@ -1,5 +1,7 @@
 #include "daemon.h"
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <cstdint>
 
@@ -291,21 +293,24 @@ struct Daemon::Impl {
     return Status::Ok();
   }
 
-  // Once, after the second drawn frame: by then llvmpipe has compiled every
+  // Once, after the second drawn frame: what start-up needed and the show
+  // does not goes back to the kernel. By then llvmpipe has compiled every
   // shader this pipeline uses (the second draw at a camera adds the
-  // triangle-ID pass, osmesa_frame.h), so libLLVM's pages go back to the kernel.
-  static void ReleaseCompilerPages() {
+  // triangle-ID pass, osmesa_frame.h), so libLLVM's pages can go; and the
+  // heap's free pages left by reading the bake (malloc_trim).
+  static void ReleaseStartupMemory() {
     const int64_t start_us = MonotonicUs();
     render::PagesReleased released;
     const Status st = render::ReleaseShaderCompilerPages(&released);
-    if (!st.ok()) {
-      Log(LogLevel::kInfo, "relightd: shader compiler pages kept: %s", st.ToString().c_str());
-      return;
-    }
-    if (released.mappings == 0) return;
-    Log(LogLevel::kInfo, "relightd: frames flowing; handed the shader compiler's pages back to the kernel "
-        "(%d read-only mappings, %.1f MB mapped, %.1f ms)", released.mappings,
-        static_cast<double>(released.bytes) / 1e6, static_cast<double>(MonotonicUs() - start_us) / 1e3);
+    if (!st.ok()) Log(LogLevel::kInfo, "relightd: shader compiler pages kept: %s", st.ToString().c_str());
+#if defined(__GLIBC__)
+    malloc_trim(0);
+#endif
+    Log(LogLevel::kInfo,
+        "relightd: frames flowing; start-up memory handed back to the kernel (shader compiler: %d read-only "
+        "mappings, %.1f MB mapped; free heap pages), %.1f ms",
+        released.mappings, static_cast<double>(released.bytes) / 1e6,
+        static_cast<double>(MonotonicUs() - start_us) / 1e3);
   }
 };
 
@@ -327,6 +332,7 @@ Status Daemon::Open(const DaemonConfig& config) {
   m.engine_options.threads = config.engine_threads;
   m.engine_options.surface_emitters = !p.emitters.empty();
   m.engine_options.keep_direct_inputs = false;  // nothing here reads them after Open
+  m.engine_options.grids = false;               // nor the grids: frames show the surfaces
   RELIGHT_RETURN_IF_ERROR(m.engine.Open(config.bake_path, m.engine_options));
   RELIGHT_RETURN_IF_ERROR(hal::ResolvePatch(Luminaires(m.engine), &p));
   const std::string script = config.replay_path.empty() ? p.replay_script : config.replay_path;
@@ -413,7 +419,7 @@ Status Daemon::Run(const std::atomic<bool>& stop, std::atomic<bool>& reload) {
     }
     RELIGHT_RETURN_IF_ERROR(m.WriteSinks(frame));
     const int64_t out_us = MonotonicUs();
-    if (render && m.stats.renders == 2 && m.config.release_compiler_pages) Impl::ReleaseCompilerPages();
+    if (render && m.stats.renders == 2 && m.config.release_startup_memory) Impl::ReleaseStartupMemory();
 
     const int64_t shown_arrival_us = render ? pending_arrival_us : 0;
     if (shown_arrival_us > 0) {

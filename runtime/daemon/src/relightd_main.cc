@@ -100,12 +100,13 @@ int main(int argc, char** argv) {
   app.add_option("--camera-target", camera_target, "point looked at X,Y,Z in metres (default: the scene's)");
   app.add_option("--fov", fov, "vertical field of view, degrees")->check(CLI::Range(1.0, 170.0));
   app.add_option("--white", white_cd_m2, "luminance shown as display white, cd/m^2")->check(CLI::Range(0.001, 1e7));
-  bool keep_compiler_pages = false;
-  app.add_flag("--keep-compiler-pages", keep_compiler_pages,
-               "keep llvmpipe's shader compiler (libLLVM) resident after the first frame (default: its ~45 MB of "
-               "start-up pages go back to the kernel, which re-reads them only if a new shader is compiled)");
+  bool keep_startup_memory = false;
+  app.add_flag("--keep-startup-memory", keep_startup_memory,
+               "keep what only start-up needed resident (default: after the second frame, llvmpipe's shader "
+               "compiler pages, ~45 MB, and the heap's free pages go back to the kernel; a later shader "
+               "compile reads them again)");
   CLI11_PARSE(app, argc, argv);
-  config.release_compiler_pages = !keep_compiler_pages;
+  config.release_startup_memory = !keep_startup_memory;
 
   if (!sheet.empty() && config.max_frames == 0 && !config.exit_when_replay_done) {
     return Fail(relight::Status(relight::StatusCode::kInvalidArgument,

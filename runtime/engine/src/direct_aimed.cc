@@ -1,6 +1,8 @@
 // The aimed direct term (see direct_aimed.h).
 #include "direct_aimed.h"
 
+#include <algorithm>
+
 #include <cstddef>
 
 #include "relight/bake/bake_limits.h"
@@ -28,7 +30,10 @@ int BitLength(UInt128 v) {
 }  // namespace
 
 void PrepareDirectPoints(const DirectReceivers& rx, DirectPoints* out) {
-  out->points.assign(rx.count, DirectPoint{{0, 0, 0}, 0});
+  // Every receiver's point first (the blocks' cones need them), then only
+  // the blocks that have any are kept, in a vector of their exact size: one
+  // allocation that stays, so the heap keeps no hole per luminaire.
+  std::vector<DirectPoint> all(rx.count, DirectPoint{{0, 0, 0}, 0});
   const int64_t mantissa = rx.geometry_scale.mantissa > 0 ? rx.geometry_scale.mantissa : 0;
   uint32_t g_max = 0;
   for (uint32_t r = 0; r < rx.count; ++r) g_max = rx.geometry[r] > g_max ? rx.geometry[r] : g_max;
@@ -41,13 +46,30 @@ void PrepareDirectPoints(const DirectReceivers& rx, DirectPoints* out) {
   for (uint32_t r = 0; r < rx.count; ++r) {
     const int16_t* d = rx.direction_q14 + static_cast<size_t>(r) * 3;
     if (rx.geometry[r] == 0 || mantissa == 0 || (d[0] | d[1] | d[2]) == 0) continue;
-    DirectPoint& p = out->points[r];
+    DirectPoint& p = all[r];
     const int64_t v[3] = {d[0], d[1], d[2]};
     NormaliseQ30(v, p.direction_q30);
     const int64_t g = RoundShiftSat64(static_cast<Int128>(rx.geometry[r]) * mantissa, s);
     p.geometry = g > 0xffffffffLL ? 0xffffffffu : static_cast<uint32_t>(g);
   }
-  PrepareDirectBlocks(out->points.data(), rx.count, SharedGammaTable(), &out->blocks);
+  PrepareDirectBlocks(all.data(), rx.count, SharedGammaTable(), &out->blocks);
+  out->count = rx.count;
+  out->block_points.assign(out->blocks.size(), 0);
+  size_t kept = 0;
+  for (size_t b = 0; b < out->blocks.size(); ++b) {
+    out->block_points[b] = static_cast<uint32_t>(kept);
+    if (out->blocks[b].half_angle == kNoPoints) continue;
+    kept += std::min<size_t>(kDirectBlockPoints, rx.count - b * kDirectBlockPoints);
+  }
+  std::vector<DirectPoint>().swap(out->points);
+  out->points.reserve(kept);
+  for (size_t b = 0; b < out->blocks.size(); ++b) {
+    if (out->blocks[b].half_angle == kNoPoints) continue;
+    const size_t first = b * kDirectBlockPoints;
+    const size_t end = std::min<size_t>(rx.count, first + kDirectBlockPoints);
+    out->points.insert(out->points.end(), all.begin() + static_cast<std::ptrdiff_t>(first),
+                       all.begin() + static_cast<std::ptrdiff_t>(end));
+  }
 }
 
 int64_t LidIntensityFastQ16(const int64_t* candela_q16, int M, Bam gamma) {
@@ -96,11 +118,12 @@ inline uint64_t PointLuxQ12(const DirectPoint& pt, const AimedCall& k, const Gam
 }
 
 template <bool kLuminance, bool kAddTo>
-void AimedRange(const DirectPoint* p, uint32_t first, uint32_t end, const AimedCall& k,
+void AimedRange(const DirectPoint* block, uint32_t first, uint32_t end, const AimedCall& k,
                 const GammaTable& gt, const int64_t* lid_q16, int lid_m, const uint32_t* rho_q32,
                 int32_t* out) {
   for (uint32_t r = first; r < end; ++r) {
-    const uint64_t e_q12 = p[r].geometry != 0 ? PointLuxQ12(p[r], k, gt, lid_q16, lid_m) : 0;
+    const DirectPoint& pt = block[r - first];  // the block's points start at its first receiver
+    const uint64_t e_q12 = pt.geometry != 0 ? PointLuxQ12(pt, k, gt, lid_q16, lid_m) : 0;
     int32_t* dst = out + static_cast<size_t>(r) * 3;
     if (kAddTo && e_q12 == 0) continue;  // + 0 leaves dst as it is
     for (int c = 0; c < 3; ++c) {
@@ -121,7 +144,7 @@ template <bool kLuminance, bool kAddTo>
 void AimedLoop(const DirectPoints& points, const AimedCall& k, const GammaTable& gt,
                const int64_t* lid_q16, int lid_m, uint64_t g_zero, const uint32_t* rho_q32,
                int32_t* out) {
-  const uint32_t count = static_cast<uint32_t>(points.points.size());
+  const uint32_t count = points.count;
   const int32_t axis[3] = {static_cast<int32_t>(k.a0), static_cast<int32_t>(k.a1), static_cast<int32_t>(k.a2)};
   for (size_t b = 0; b < points.blocks.size(); ++b) {
     const uint32_t first = static_cast<uint32_t>(b) * kDirectBlockPoints;
@@ -132,7 +155,8 @@ void AimedLoop(const DirectPoints& points, const AimedCall& k, const GammaTable&
       }
       continue;
     }
-    AimedRange<kLuminance, kAddTo>(points.points.data(), first, end, k, gt, lid_q16, lid_m, rho_q32, out);
+    AimedRange<kLuminance, kAddTo>(points.points.data() + points.block_points[b], first, end, k, gt, lid_q16,
+                                   lid_m, rho_q32, out);
   }
 }
 

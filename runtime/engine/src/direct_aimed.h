@@ -30,9 +30,13 @@ struct DirectPoint {
   uint32_t geometry;         // visibility cos / d^2 x 2^shift, in Q.12 lux per Q.16 cd
 };
 
-// A luminaire's receivers on one set, prepared at Open.
+// A luminaire's receivers on one set, prepared at Open. Blocks of
+// receivers no luminaire light reaches (kNoPoints: all geometry 0, e.g. the
+// far side of the set) keep no points: 14 % of the stage's blocks.
 struct DirectPoints {
-  std::vector<DirectPoint> points;
+  uint32_t count = 0;               // receivers
+  std::vector<DirectPoint> points;  // the blocks' that have any, block after block
+  std::vector<uint32_t> block_points;  // per block: its first point in `points` (none if kNoPoints)
   int shift = 0;  // E_q12 = I_q16 x geometry >> shift
   std::vector<DirectBlock> blocks;  // cones of kDirectBlockPoints receivers (direct_cull.h)
 };

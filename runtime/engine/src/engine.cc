@@ -82,6 +82,22 @@ struct Engine::Impl {
 
 namespace {
 
+// The bake as if it had no calculation grid (EngineOptions::grids): still
+// one that passes ValidateBake.
+void DropGrids(Bake* bake) {
+  bake->grids.clear();
+  bake->grids.shrink_to_fit();
+  for (BakeLuminaire& b : bake->luminaires) {
+    b.receivers.resize(1);
+    b.receivers.shrink_to_fit();
+  }
+  if (bake->hierarchy) {
+    bake->hierarchy->grid_link_offsets = {};
+    bake->hierarchy->grid_link_node = {};
+    bake->hierarchy->grid_link_f = {};
+  }
+}
+
 bool Lit(const LuminaireRuntime& lum) {
   for (int c = 0; c < 3; ++c) {
     if (GainQ30(lum.state.dimmer, lum.state.rgb[c]).raw() != 0) return true;
@@ -129,6 +145,7 @@ Status Engine::Open(Bake bake, const EngineOptions& options) {
   std::unique_ptr<Impl> impl(new Impl);
   impl->bake = std::move(bake);
   if (!options.surface_emitters) impl->bake.hierarchy.reset();
+  if (!options.grids) DropGrids(&impl->bake);
   RELIGHT_RETURN_IF_ERROR(impl->Allocate(options));
   impl->Update();
   impl_ = std::move(impl);
