@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "emitter_args.h"
+#include "relight/base/proc_status.h"
 #include "relight/engine/engine.h"
 #include "relight/engine/tone_map.h"
 #include "relight/hal/replay_source.h"
@@ -126,20 +127,6 @@ bool DumpFrame(const std::string& dir, int frame, const int32_t* luminance, cons
          WriteFile(dir + name + ".rgb8", rgb8, static_cast<size_t>(vertices) * 3);
 }
 
-// "VmRSS" or "VmHWM" (peak) from /proc/self/status, kB; -1 if unknown.
-long ProcStatusKb(const char* field) {
-  FILE* f = std::fopen("/proc/self/status", "r");
-  if (f == nullptr) return -1;
-  char line[256];
-  long kb = -1;
-  const size_t n = std::strlen(field);
-  while (std::fgets(line, sizeof line, f) != nullptr) {
-    if (std::strncmp(line, field, n) == 0 && line[n] == ':') kb = std::strtol(line + n + 1, nullptr, 10);
-  }
-  std::fclose(f);
-  return kb;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -155,7 +142,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "relight-replay-hash: error: %s\n", st.ToString().c_str());
     return 1;
   }
-  const long rss_after_open_kb = ProcStatusKb("VmRSS");
+  const long rss_after_open_kb = relight::ProcStatusKb("VmRSS");
   for (size_t i = 0; i < args.emitters.size(); ++i) {
     std::string error;
     if (!relight::cli::ApplyEmitterText(engine, static_cast<int>(i), args.emitters[i], &error)) {
@@ -227,6 +214,6 @@ int main(int argc, char** argv) {
                "%ld kB at the end, peak %ld kB\n",
                total_us / frames, frames, rank(50), rank(99), update_us.back(), engine.thread_count(), cpu_us / frames,
                main_cpu_us / frames,
-               rss_after_open_kb, ProcStatusKb("VmRSS"), ProcStatusKb("VmHWM"));
+               rss_after_open_kb, relight::ProcStatusKb("VmRSS"), relight::ProcStatusKb("VmHWM"));
   return 0;
 }

@@ -19,6 +19,7 @@
 #include "daemon.h"
 #include "notify.h"
 #include "relight/base/log.h"
+#include "relight/base/proc_status.h"
 
 namespace {
 
@@ -185,6 +186,11 @@ int main(int argc, char** argv) {
     relight::Log(relight::LogLevel::kInfo,
                  "relightd: the last frame drew %u of the mesh's %u triangles (the rest hidden at its camera)",
                  stats.drawn_triangles, stats.mesh_triangles);
+  }
+  const long rss_kb = relight::ProcStatusKb("VmRSS"), peak_kb = relight::ProcStatusKb("VmHWM");
+  if (rss_kb > 0 && peak_kb > 0) {
+    relight::Log(relight::LogLevel::kInfo, "relightd: memory: %.1f MiB resident at the end, peak %.1f MiB (start-up)",
+                 static_cast<double>(rss_kb) / 1024.0, static_cast<double>(peak_kb) / 1024.0);
   }
   if (!st.ok()) return Fail(st, 1);
   return 0;
