@@ -488,6 +488,8 @@ TEST_F(EngineTest, DroppingTheGridsChangesNoVertex) {
   EXPECT_TRUE(other.grid_direct_illuminance(0).empty());
   EXPECT_TRUE(other.bake().grids.empty());
   for (const BakeLuminaire& b : other.bake().luminaires) EXPECT_EQ(b.receivers.size(), 1u);
+  const Status valid = ValidateBake(other.bake());  // what is left is still a whole bake
+  EXPECT_TRUE(valid.ok()) << valid.ToString();
   for (Engine* e : {&engine_, &other}) {
     ASSERT_TRUE(e->SetPanTilt(0, Deg(-35), Deg(20)).ok());
     ASSERT_TRUE(e->SetPanTilt(1, Deg(15), Deg(40)).ok());
