@@ -1,7 +1,5 @@
 #include "daemon.h"
 
-#include <malloc.h>
-
 #include <algorithm>
 #include <cstdint>
 
@@ -16,7 +14,7 @@
 #include "relight/hal/param_text.h"
 #include "relight/hal/replay_source.h"
 #include "relight/hal/source_factory.h"
-#include "relight/render/compiler_pages.h"
+#include "startup_memory.h"
 
 namespace relight::daemon {
 
@@ -292,26 +290,6 @@ struct Daemon::Impl {
     }
     return Status::Ok();
   }
-
-  // Once, after the second drawn frame: what start-up needed and the show
-  // does not goes back to the kernel. By then llvmpipe has compiled every
-  // shader this pipeline uses (the second draw at a camera adds the
-  // triangle-ID pass, osmesa_frame.h), so libLLVM's pages can go; and the
-  // heap's free pages left by reading the bake (malloc_trim).
-  static void ReleaseStartupMemory() {
-    const int64_t start_us = MonotonicUs();
-    render::PagesReleased released;
-    const Status st = render::ReleaseShaderCompilerPages(&released);
-    if (!st.ok()) Log(LogLevel::kInfo, "relightd: shader compiler pages kept: %s", st.ToString().c_str());
-#if defined(__GLIBC__)
-    malloc_trim(0);
-#endif
-    Log(LogLevel::kInfo,
-        "relightd: frames flowing; start-up memory handed back to the kernel (shader compiler: %d read-only "
-        "mappings, %.1f MB mapped; free heap pages), %.1f ms",
-        released.mappings, static_cast<double>(released.bytes) / 1e6,
-        static_cast<double>(MonotonicUs() - start_us) / 1e3);
-  }
 };
 
 Daemon::Daemon() : impl_(std::make_unique<Impl>()) {}
@@ -419,7 +397,7 @@ Status Daemon::Run(const std::atomic<bool>& stop, std::atomic<bool>& reload) {
     }
     RELIGHT_RETURN_IF_ERROR(m.WriteSinks(frame));
     const int64_t out_us = MonotonicUs();
-    if (render && m.stats.renders == 2 && m.config.release_startup_memory) Impl::ReleaseStartupMemory();
+    if (render && m.stats.renders == 2 && m.config.release_startup_memory) ReleaseStartupMemory();
 
     const int64_t shown_arrival_us = render ? pending_arrival_us : 0;
     if (shown_arrival_us > 0) {
