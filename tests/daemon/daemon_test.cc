@@ -68,51 +68,6 @@ TEST(Daemon, ReplayGivesBitIdenticalFramesEveryRun) {
   EXPECT_NE(first.substr(0, frame_bytes), first.substr(5 * frame_bytes)) << "the script changes the picture";
 }
 
-// Private_Clean (kB) of every mapping of a file whose path contains `part`;
-// -1 when none is mapped.
-long PrivateCleanKb(const char* part) {
-  FILE* f = std::fopen("/proc/self/smaps", "r");
-  if (f == nullptr) return -1;
-  char line[4096];
-  bool in = false, any = false;
-  long total = 0, kb = 0;
-  while (std::fgets(line, sizeof line, f) != nullptr) {
-    unsigned long long a = 0, b = 0;
-    if (std::sscanf(line, "%llx-%llx ", &a, &b) == 2 && std::strchr(line, ' ') > std::strchr(line, '-')) {
-      in = std::strstr(line, part) != nullptr;
-      any = any || in;
-    } else if (in && std::sscanf(line, "Private_Clean: %ld kB", &kb) == 1) {
-      total += kb;
-    }
-  }
-  std::fclose(f);
-  return any ? total : -1;
-}
-
-// llvmpipe's compiler (libLLVM) leaves the resident set after the second
-// drawn frame (render/compiler_pages.h), unless the config keeps it.
-TEST(Daemon, TheShaderCompilerLeavesTheResidentSetAfterTwoFrames) {
-  for (const bool release : {false, true}) {
-    DaemonConfig c = SmallConfig();
-    c.replay_path = WriteTemp(std::string("pages_") + (release ? "r" : "k") + ".replay", kScript);
-    c.script_time = true;
-    c.exit_when_replay_done = true;
-    c.release_startup_memory = release;
-    Daemon d;
-    ASSERT_TRUE(d.Open(c).ok());
-    const Status st = RunToEnd(d);
-    ASSERT_TRUE(st.ok()) << st.ToString();
-    ASSERT_GE(d.stats().renders, 2);
-    const long kb = PrivateCleanKb("libLLVM");
-    if (kb < 0) GTEST_SKIP() << "no libLLVM mapped: OSMesa here does not use llvmpipe";
-    if (release) {
-      EXPECT_LT(kb, 2048) << "libLLVM pages still resident after the release";
-    } else {
-      EXPECT_GT(kb, 8192) << "llvmpipe touched less of libLLVM than expected: the test shows nothing";
-    }
-  }
-}
-
 TEST(Daemon, RealTimeReplayShowsTheSameFramesAsScriptTime) {
   DaemonStats stats;
   const std::string script_time = RenderReplayToPpm(true, "replay_script.ppm", nullptr);

@@ -16,29 +16,17 @@
 #include <string>
 #include <vector>
 
+#include "common/smaps.h"
+
 namespace relight::render {
 namespace {
 
 constexpr size_t kFileBytes = size_t{8} << 20;
 
-// Rss (kB) of the mapping that starts at `addr`, from /proc/self/smaps; -1 if absent.
+// Rss (kB) of the mapping that starts at `addr`; -1 if absent.
 long MappingRssKb(const void* addr) {
-  FILE* f = std::fopen("/proc/self/smaps", "r");
-  if (f == nullptr) return -1;
-  char line[4096];
-  bool in = false;
-  long rss = -1;
-  const uintmax_t want = reinterpret_cast<uintptr_t>(addr);
-  while (std::fgets(line, sizeof line, f) != nullptr) {
-    uintmax_t start = 0, end = 0;
-    if (std::sscanf(line, "%jx-%jx ", &start, &end) == 2 && std::strchr(line, '-') < std::strchr(line, ' ')) {
-      in = start == want;
-      continue;
-    }
-    if (in && std::sscanf(line, "Rss: %ld kB", &rss) == 1) break;
-  }
-  std::fclose(f);
-  return rss;
+  const test::SmapsKb kb = test::SmapsAt(addr);
+  return kb.any ? kb.rss : -1;
 }
 
 uint64_t Checksum(const uint8_t* p, size_t n) {
