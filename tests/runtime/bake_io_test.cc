@@ -173,6 +173,35 @@ TEST_F(BakeIoTest, SingleBitFlipsAreRejected) {
   std::printf("bit flips: %zu tried, all rejected\n", flips.size());
 }
 
+// ReadBake reads the file section by section (never the whole file at
+// once): it must judge every damaged file as ParseBake judges the same bytes
+// in memory, word for word apart from the name.
+TEST_F(BakeIoTest, TheFileReaderAgreesWithTheMemoryReaderOnDamagedFiles) {
+  std::vector<size_t> flips = {0, 9, 13, 17, kHeaderBytes + 3};
+  for (const Section& s : Split(file_).sections) {
+    flips.push_back(static_cast<size_t>(s.offset));
+    flips.push_back(static_cast<size_t>(s.offset + s.stored - 1));
+  }
+  const std::string path = Path("flip.rlb");
+  for (const size_t at : flips) {
+    Bytes bad = file_;
+    bad[at] = static_cast<uint8_t>(bad[at] ^ 0x10);
+    WriteFileBytes(path, bad);
+    Bake from_memory, from_file;
+    const Status memory = ParseBake(bad.data(), bad.size(), &from_memory);
+    const Status file = ReadBake(path, &from_file);
+    EXPECT_FALSE(file.ok()) << "byte " << at;
+    EXPECT_EQ(file.code(), memory.code()) << "byte " << at;
+    std::string expected = memory.message();
+    const std::string in_memory = "(in memory)";
+    const size_t name = expected.find(in_memory);
+    ASSERT_NE(name, std::string::npos) << expected;
+    expected.replace(name, in_memory.size(), "'" + path + "'");
+    EXPECT_EQ(file.message(), expected) << "byte " << at;
+    EXPECT_TRUE(from_file.luminaires.empty() && from_file.mesh.positions.empty());
+  }
+}
+
 TEST_F(BakeIoTest, NewerVersionIsUnsupportedAndVersionZeroCorrupt) {
   Container c = Split(file_);
   EXPECT_EQ(c.version, 3u);  // with a hierarchy

@@ -21,18 +21,32 @@ Status ContainerReader::Corrupt(const std::string& where, const std::string& wha
   return Status(StatusCode::kCorrupt, "bake " + name_ + ": " + where + ": " + what);
 }
 
+Status ContainerReader::Fetch(uint64_t offset, size_t n, std::vector<uint8_t>* buffer,
+                              const std::string& label, const uint8_t** bytes) const {
+  if (file_ == nullptr) {
+    *bytes = data_ + offset;
+    return Status::Ok();
+  }
+  buffer->resize(n);
+  const std::string error = file_->ReadAt(offset, n, buffer->data());
+  if (!error.empty()) return Status(StatusCode::kIoError, "bake " + name_ + ": " + label + ": " + error);
+  *bytes = buffer->data();
+  return Status::Ok();
+}
+
 Status ContainerReader::ReadHeader() {
   const char* where = "header";
   if (size_ == 0) return Corrupt(where, "empty file");
+  RELIGHT_RETURN_IF_ERROR(Fetch(0, size_ < kHeaderBytes ? size_ : kHeaderBytes, &head_bytes_, where, &head_));
   const size_t have = size_ < sizeof(kMagic) ? size_ : sizeof(kMagic);
-  if (std::memcmp(data_, kMagic, have) != 0) {
+  if (std::memcmp(head_, kMagic, have) != 0) {
     return Corrupt(where, "bad magic, not a relight bake");
   }
   if (size_ < kHeaderBytes) {
     return Corrupt(
         where, StrFormat("truncated: %zu bytes, the header alone is %zu", size_, kHeaderBytes));
   }
-  const uint32_t version = LoadLe<uint32_t>(data_ + kVersionOffset);
+  const uint32_t version = LoadLe<uint32_t>(head_ + kVersionOffset);
   if (version > kVersion) {
     // Only magic and version are promised to stay put across versions.
     return Status(StatusCode::kUnsupported,
@@ -41,7 +55,7 @@ Status ContainerReader::ReadHeader() {
   }
   if (version == 0) return Corrupt(where, "format version 0");
   version_ = version;
-  const uint32_t sections = LoadLe<uint32_t>(data_ + kSectionCountOffset);
+  const uint32_t sections = LoadLe<uint32_t>(head_ + kSectionCountOffset);
   if (sections < 2 || sections > kMaxSections) {
     return Corrupt(where,
                    StrFormat("section count %u is outside [2, %u]", sections, kMaxSections));
@@ -52,15 +66,16 @@ Status ContainerReader::ReadHeader() {
                                     "byte %zu, the file has %zu bytes",
                                     sections, toc_end_, size_));
   }
-  uint32_t crc = Crc32(data_, kHeaderCrcOffset);
-  crc = Crc32(data_ + kHeaderBytes, toc_end_ - kHeaderBytes, crc);
-  const uint32_t stored_crc = LoadLe<uint32_t>(data_ + kHeaderCrcOffset);
+  RELIGHT_RETURN_IF_ERROR(Fetch(0, toc_end_, &head_bytes_, where, &head_));
+  uint32_t crc = Crc32(head_, kHeaderCrcOffset);
+  crc = Crc32(head_ + kHeaderBytes, toc_end_ - kHeaderBytes, crc);
+  const uint32_t stored_crc = LoadLe<uint32_t>(head_ + kHeaderCrcOffset);
   if (crc != stored_crc) {
     return Corrupt(where, StrFormat("crc mismatch over header and table of contents (stored "
                                     "0x%08X, computed 0x%08X)",
                                     stored_crc, crc));
   }
-  const uint64_t file_size = LoadLe<uint64_t>(data_ + kFileSizeOffset);
+  const uint64_t file_size = LoadLe<uint64_t>(head_ + kFileSizeOffset);
   if (file_size != size_) {
     return Corrupt(where, StrFormat("the file has %zu bytes, the header says %llu (truncated?)",
                                     size_, static_cast<ull>(file_size)));
@@ -73,7 +88,7 @@ Status ContainerReader::ReadHeader() {
 Status ContainerReader::ReadToc() {
   uint64_t expected = toc_end_;
   for (size_t i = 0; i < toc_.size(); ++i) {
-    toc_[i] = LoadTocEntry(data_ + kHeaderBytes + kTocEntryBytes * i);
+    toc_[i] = LoadTocEntry(head_ + kHeaderBytes + kTocEntryBytes * i);
     const TocEntry& e = toc_[i];
     const std::string where = StrFormat("TOC entry %zu (%s)", i, TagName(e.tag).c_str());
     if ((e.flags & ~kKnownFlags) != 0) {
@@ -143,8 +158,9 @@ Status ContainerReader::Expect(size_t index, uint32_t tag, const std::string& la
 
 Status ContainerReader::Load(size_t index, const std::string& label, ByteReader* payload) {
   const TocEntry& e = toc_[index];
-  const uint8_t* stored = data_ + e.offset;
   const auto stored_size = static_cast<size_t>(e.stored);
+  const uint8_t* stored = nullptr;
+  RELIGHT_RETURN_IF_ERROR(Fetch(e.offset, stored_size, &stored_, label, &stored));
   const uint32_t crc = Crc32(stored, stored_size);
   if (crc != e.crc) {
     return Corrupt(label, StrFormat("crc mismatch (stored 0x%08X, computed 0x%08X)", e.crc, crc));

@@ -35,7 +35,8 @@ struct CctxDeleter {
   void operator()(ZSTD_CCtx* c) const { ZSTD_freeCCtx(c); }
 };
 
-// Reads a container from bytes in memory, trusting nothing: Open() checks
+// Reads a container from bytes in memory or from an open file, trusting
+// nothing: Open() checks
 // magic, version, crc over header and TOC, sizes and layout before any
 // section is read; Expect() a section's tag and raw size before Load()
 // checks its crc and decompresses it. Errors are kCorrupt "bake NAME: where: what".
@@ -43,6 +44,11 @@ class ContainerReader {
  public:
   ContainerReader(const uint8_t* data, size_t size, std::string name)
       : data_(data), size_(size), name_(std::move(name)) {}
+  // From a file, one section at a time: what is held at once is the header
+  // and TOC, one section as stored and one decompressed, never the file.
+  // `file` must outlive the reader.
+  ContainerReader(const ReadOnlyFile* file, std::string name)
+      : size_(file->size()), name_(std::move(name)), file_(file) {}
 
   // Header and table of contents. kCorrupt, or kUnsupported for a newer version.
   Status Open() {
@@ -73,13 +79,21 @@ class ContainerReader {
  private:
   Status ReadHeader();
   Status ReadToc();
+  // `n` bytes at `offset`: in place in memory, or read from the file into
+  // `buffer`. The caller has checked the range lies within the file.
+  Status Fetch(uint64_t offset, size_t n, std::vector<uint8_t>* buffer, const std::string& label,
+               const uint8_t** bytes) const;
 
-  const uint8_t* data_;
+  const uint8_t* data_ = nullptr;  // the whole container (memory), or null (file)
   size_t size_;
   std::string name_;  // "'path'" or "(in memory)", for messages
   size_t toc_end_ = 0;
   uint32_t version_ = kVersion;
   std::vector<TocEntry> toc_;
+  const ReadOnlyFile* file_ = nullptr;
+  const uint8_t* head_ = nullptr;  // header + TOC: in data_, or in head_bytes_
+  std::vector<uint8_t> head_bytes_;
+  std::vector<uint8_t> stored_;   // one section as stored (file only)
   std::vector<uint8_t> scratch_;  // one decompressed section at a time
   std::unique_ptr<ZSTD_DCtx, DctxDeleter> dctx_;
 };

@@ -47,7 +47,11 @@ bool WriteAt(int fd, const uint8_t* data, size_t size, uint64_t offset) {
   return true;
 }
 
-Status ReadWholeFile(const std::string& path, std::vector<uint8_t>* bytes) {
+ReadOnlyFile::~ReadOnlyFile() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+Status ReadOnlyFile::Open(const std::string& path) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) {
     const int err = errno;
@@ -62,22 +66,27 @@ Status ReadWholeFile(const std::string& path, std::vector<uint8_t>* bytes) {
     error = "not a regular file";
   } else if (st.st_size < 0 || !FitsSizeT(st.st_size)) {
     error = "too large for this machine's address space";
-  } else {
-    bytes->resize(static_cast<size_t>(st.st_size));
-    size_t done = 0;
-    while (done < bytes->size() && error.empty()) {
-      const ssize_t n = ::read(fd, bytes->data() + done, bytes->size() - done);
-      if (n < 0 && errno == EINTR) continue;
-      if (n < 0) error = std::strerror(errno);
-      if (n == 0) error = "the file shrank while being read";
-      if (n > 0) done += static_cast<size_t>(n);
-    }
   }
-  ::close(fd);
   if (!error.empty()) {
+    ::close(fd);
     return Status(StatusCode::kIoError, StrFormat("bake '%s': %s", path.c_str(), error.c_str()));
   }
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = fd;
+  size_ = static_cast<size_t>(st.st_size);
   return Status::Ok();
+}
+
+std::string ReadOnlyFile::ReadAt(uint64_t offset, size_t n, uint8_t* dst) const {
+  size_t done = 0;
+  while (done < n) {
+    const ssize_t got = ::pread(fd_, dst + done, n - done, static_cast<off_t>(offset + done));
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) return std::strerror(errno);
+    if (got == 0) return "the file shrank while being read";
+    done += static_cast<size_t>(got);
+  }
+  return "";
 }
 
 Status WriteFileAtomically(const std::string& path, const std::function<bool(int fd)>& write) {

@@ -24,6 +24,8 @@ class Parser {
  public:
   Parser(const uint8_t* data, size_t size, std::string name, const ReadBakeOptions& options = {})
       : in_(data, size, std::move(name)), options_(options) {}
+  Parser(const ReadOnlyFile* file, std::string name, const ReadBakeOptions& options)
+      : in_(file, std::move(name)), options_(options) {}
 
   Status Parse(Bake* out) {
     RELIGHT_RETURN_IF_ERROR(in_.Open());
@@ -173,10 +175,12 @@ Status ParseBake(const uint8_t* data, size_t size, Bake* out) {
 
 Status ReadBake(const std::string& path, Bake* out) { return ReadBake(path, ReadBakeOptions{}, out); }
 
+// Section by section from the file: a bake is read into memory once, not
+// held twice (file bytes and decoded bake) while it is parsed.
 Status ReadBake(const std::string& path, const ReadBakeOptions& options, Bake* out) {
-  std::vector<uint8_t> bytes;
-  RELIGHT_RETURN_IF_ERROR(ReadWholeFile(path, &bytes));
-  return Parser(bytes.data(), bytes.size(), "'" + path + "'", options).Parse(out);
+  ReadOnlyFile file;
+  RELIGHT_RETURN_IF_ERROR(file.Open(path));
+  return Parser(&file, "'" + path + "'", options).Parse(out);
 }
 
 }  // namespace relight
