@@ -14,6 +14,21 @@ CameraView CameraFromBake(const BakeCamera& cam) {
   return view;
 }
 
+Status FramePipeline::WarmUp(int width, int height) {
+  // One triangle across the view of the default camera (at the origin,
+  // looking down -z), 2 m ahead.
+  BakeMesh mesh;
+  constexpr int32_t kMetre = 65536;
+  mesh.positions = {-kMetre, -kMetre, -2 * kMetre, kMetre, -kMetre, -2 * kMetre, 0, kMetre, -2 * kMetre};
+  mesh.triangles = {0, 1, 2};
+  RELIGHT_RETURN_IF_ERROR(frame_.Init(width, height, mesh));
+  frame_.SetCamera(CameraView{});
+  const uint8_t rgb[9] = {200, 40, 40, 40, 200, 40, 40, 40, 200};
+  std::vector<uint8_t> pixels(static_cast<size_t>(width) * height * 3);
+  for (int draw = 0; draw < 2; ++draw) RELIGHT_RETURN_IF_ERROR(frame_.Draw(rgb, pixels.data()));
+  return Status::Ok();
+}
+
 Status FramePipeline::Init(const Engine& engine, int width, int height, const CameraView& view, int32_t white_q12) {
   BuildToneMap(white_q12 > 0 ? white_q12 : engine.bake().white_luminance, &tone_map_);
   RELIGHT_RETURN_IF_ERROR(frame_.Init(width, height, engine.bake().mesh));

@@ -18,6 +18,13 @@ CameraView CameraFromBake(const BakeCamera& camera);
 
 class FramePipeline {
  public:
+  // Has llvmpipe compile every shader the frames use, before any bake is
+  // read: a stand-in triangle drawn as the frames draw (the colour pass, then
+  // the ID pass and the culled colour pass). Init at the same size keeps
+  // this context, so the frames compile nothing more, and the compiler's
+  // pages can go back to the kernel before the bake comes in
+  // (render/compiler_pages.h). Errors as Init's.
+  Status WarmUp(int width, int height);
   // white_q12 <= 0: the bake's display white. kInvalidArgument / kInternal
   // from OsMesaFrame::Init.
   Status Init(const Engine& engine, int width, int height, const CameraView& view, int32_t white_q12);

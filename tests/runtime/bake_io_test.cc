@@ -202,6 +202,46 @@ TEST_F(BakeIoTest, TheFileReaderAgreesWithTheMemoryReaderOnDamagedFiles) {
   }
 }
 
+// ReadBakeOptions::grids = false: the bake as if it had no grid, the rest
+// as a full read gives it; the grids' sections are skipped unread (a damaged
+// one goes unseen) but their sizes still checked.
+TEST_F(BakeIoTest, ReadingWithoutGridsSkipsTheirSectionsAndKeepsTheRest) {
+  ReadBakeOptions no_grids;
+  no_grids.grids = false;
+  Bake full, surfaces;
+  ASSERT_TRUE(ReadBake(Path("good.rlb"), &full).ok());
+  Status st = ReadBake(Path("good.rlb"), no_grids, &surfaces);
+  ASSERT_TRUE(st.ok()) << st.ToString();
+  ASSERT_FALSE(full.grids.empty());
+  EXPECT_TRUE(surfaces.grids.empty());
+  EXPECT_TRUE(surfaces.mesh.positions == full.mesh.positions && surfaces.mesh.triangles == full.mesh.triangles);
+  ASSERT_EQ(surfaces.luminaires.size(), full.luminaires.size());
+  for (size_t l = 0; l < full.luminaires.size(); ++l) {
+    ASSERT_EQ(surfaces.luminaires[l].receivers.size(), 1u);
+    EXPECT_TRUE(surfaces.luminaires[l].receivers[0].basis == full.luminaires[l].receivers[0].basis) << l;
+    EXPECT_TRUE(surfaces.luminaires[l].receivers[0].direction == full.luminaires[l].receivers[0].direction) << l;
+  }
+  st = ValidateBake(surfaces);
+  EXPECT_TRUE(st.ok()) << st.ToString();
+
+  // The first luminaire's first grid BASE (after its vertex DIRT and BASE and the grid's DIRT): its payload damaged.
+  Container c = Split(file_);
+  const size_t grid_base = 2 + 2 + 2 + 3;  // META MESH, 2 GRID, 2 LUMI, then DIRT BASE DIRT
+  ASSERT_EQ(c.sections[grid_base].tag, Tag("BASE"));
+  c.sections[grid_base].bytes.back() ^= 0x5A;
+  WriteFileBytes(Path("grid_damaged.rlb"), Join(c));
+  EXPECT_EQ(ReadBake(Path("grid_damaged.rlb"), &full).code(), StatusCode::kCorrupt);
+  st = ReadBake(Path("grid_damaged.rlb"), no_grids, &surfaces);
+  EXPECT_TRUE(st.ok()) << st.ToString();
+  // Its raw size made wrong: refused either way, before anything is decompressed.
+  c = Split(file_);
+  c.sections[grid_base].raw += 2;
+  WriteFileBytes(Path("grid_size.rlb"), Join(c));
+  st = ReadBake(Path("grid_size.rlb"), no_grids, &surfaces);
+  EXPECT_EQ(st.code(), StatusCode::kCorrupt) << st.ToString();
+  EXPECT_TRUE(Contains(st.message(), "set 1")) << st.message();
+}
+
 TEST_F(BakeIoTest, NewerVersionIsUnsupportedAndVersionZeroCorrupt) {
   Container c = Split(file_);
   EXPECT_EQ(c.version, 3u);  // with a hierarchy

@@ -590,6 +590,49 @@ TEST(OsMesaFrameTest, HiddenTriangleCullingDrawsFewerTrianglesAndTheSamePixels) 
   EXPECT_LT(culled.last_drawn_triangles(), triangles);
 }
 
+// Init again at the same size keeps the context (its compiled shaders) and
+// replaces the mesh: every frame, ID pass and culled draw is then the same as
+// a fresh frame's. A bad mesh leaves the loaded one; a new size, a new context.
+TEST(OsMesaFrameTest, ANewMeshAtTheSameSizeDrawsLikeAFreshFrame) {
+  const BakeMesh room = RoomMesh(6, 4, 3, 0.25);
+  constexpr int kFrameW = 160, kFrameH = 100;
+  OsMesaFrame reused, fresh;
+  std::vector<uint8_t> a(static_cast<size_t>(kFrameW) * kFrameH * 3), b(a.size());
+  ASSERT_TRUE(reused.Init(kFrameW, kFrameH, QuadMesh()).ok());
+  reused.SetCamera(HeadOnView());
+  for (int draw = 0; draw < 2; ++draw) ASSERT_TRUE(reused.Draw(kQuadRgb, a.data()).ok());
+  EXPECT_EQ(reused.last_drawn_triangles(), 2u);
+
+  ASSERT_TRUE(reused.Init(kFrameW, kFrameH, room).ok());
+  ASSERT_TRUE(fresh.Init(kFrameW, kFrameH, room).ok());
+  BakeMesh bad = room;
+  bad.triangles[7] = room.vertex_count();
+  EXPECT_EQ(reused.Init(kFrameW, kFrameH, bad).code(), StatusCode::kInvalidArgument);
+
+  std::vector<uint8_t> colours(static_cast<size_t>(room.vertex_count()) * 3);
+  std::mt19937 rng(5);
+  const CameraView view = ViewFrom({0.5f, 0.5f, 1.6f, 5, 3, 0.8f}, 60);
+  reused.SetCamera(view);
+  fresh.SetCamera(view);
+  for (int draw = 0; draw < 3; ++draw) {
+    for (uint8_t& c : colours) c = static_cast<uint8_t>(64 + rng() % 190);
+    ASSERT_TRUE(reused.Draw(colours.data(), a.data()).ok());
+    ASSERT_TRUE(fresh.Draw(colours.data(), b.data()).ok());
+    ASSERT_EQ(a, b) << "draw " << draw;
+    EXPECT_EQ(reused.last_drawn_triangles(), fresh.last_drawn_triangles()) << "draw " << draw;
+  }
+  EXPECT_LT(reused.last_drawn_triangles(), room.triangle_count());  // culled, as the fresh frame
+  std::vector<uint32_t> ids_a(static_cast<size_t>(kFrameW) * kFrameH), ids_b(ids_a.size());
+  ASSERT_TRUE(reused.DrawTriangleIds(ids_a.data()).ok());
+  ASSERT_TRUE(fresh.DrawTriangleIds(ids_b.data()).ok());
+  EXPECT_EQ(ids_a, ids_b);
+
+  ASSERT_TRUE(reused.Init(kFrameW / 2, kFrameH, room).ok());
+  EXPECT_EQ(reused.width(), kFrameW / 2);
+  reused.SetCamera(view);
+  EXPECT_TRUE(reused.Draw(colours.data(), a.data()).ok());
+}
+
 // --- PNG files
 
 TEST(PngIoTest, RoundTripIsBitExact) {

@@ -49,10 +49,15 @@ class Parser {
     if (options_.hierarchy && hierarchy_index_ != 0) {
       RELIGHT_RETURN_IF_ERROR(DecodeHierarchy(&in_, hierarchy_index_, &bake));
     }
-    if (options_.hierarchy && grid_links_) {
+    if (options_.hierarchy && grid_links_ && options_.grids) {
       uint32_t points = 0;  // each <= 2^24, at most 64 grids: no wrap
       for (const BakeGrid& grid : bake.grids) points += grid.point_count();
       RELIGHT_RETURN_IF_ERROR(DecodeGridLinks(&in_, hierarchy_index_ + 2, points, &bake));
+    }
+    if (!options_.grids) {
+      bake.grids.clear();
+      bake.grids.shrink_to_fit();
+      for (BakeLuminaire& lum : bake.luminaires) lum.receivers.resize(1);
     }
     *out = std::move(bake);
     return Status::Ok();
@@ -121,6 +126,11 @@ class Parser {
         lum.receivers.resize(sets);
         for (uint32_t s = 0; s < sets; ++s) {
           const uint32_t count = bake->receiver_count(s);
+          // A grid's sections (set 1 on) that the reader does not want: sizes checked, nothing read.
+          if (pass == 1 && s >= 1 && !options_.grids) {
+            index += lum.direct_mode == DirectMode::kExactDirect ? 2 : 1;
+            continue;
+          }
           if (lum.direct_mode == DirectMode::kExactDirect) {
             const std::string label = ReceiverLabel("DIRT", l, lum, s);
             if (pass == 0) {

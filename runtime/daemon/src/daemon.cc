@@ -311,7 +311,13 @@ Status Daemon::Open(const DaemonConfig& config) {
   m.engine_options.surface_emitters = !p.emitters.empty();
   m.engine_options.keep_direct_inputs = false;  // nothing here reads them after Open
   m.engine_options.grids = false;               // nor the grids: frames show the surfaces
+  if (config.release_startup_memory) {
+    // Shaders first, then the compiler out, then the bake: the two are never resident together.
+    RELIGHT_RETURN_IF_ERROR(m.pipeline.WarmUp(config.width, config.height));
+    ReleaseShaderCompiler();
+  }
   RELIGHT_RETURN_IF_ERROR(m.engine.Open(config.bake_path, m.engine_options));
+  if (config.release_startup_memory) ReleaseFreeHeapPages();  // reading the bake left some
   RELIGHT_RETURN_IF_ERROR(hal::ResolvePatch(Luminaires(m.engine), &p));
   const std::string script = config.replay_path.empty() ? p.replay_script : config.replay_path;
   RELIGHT_RETURN_IF_ERROR(m.Adopt(std::move(p)));
@@ -327,7 +333,9 @@ Status Daemon::Open(const DaemonConfig& config) {
     return Status(StatusCode::kInvalidArgument,
                   "--exit-when-replay-done needs a replay script (--replay, [replay] or --dmx-replay)");
   }
-  return m.pipeline.Init(m.engine, config.width, config.height, m.View(), config.white_q12);
+  RELIGHT_RETURN_IF_ERROR(m.pipeline.Init(m.engine, config.width, config.height, m.View(), config.white_q12));
+  if (config.release_startup_memory) ReleaseFreeHeapPages();  // and the mesh's upload
+  return Status::Ok();
 }
 
 void Daemon::AddSink(std::unique_ptr<FrameSink> sink) { impl_->sinks.push_back(std::move(sink)); }
@@ -397,7 +405,8 @@ Status Daemon::Run(const std::atomic<bool>& stop, std::atomic<bool>& reload) {
     }
     RELIGHT_RETURN_IF_ERROR(m.WriteSinks(frame));
     const int64_t out_us = MonotonicUs();
-    if (render && m.stats.renders == 2 && m.config.release_startup_memory) ReleaseStartupMemory();
+    // The heap's free pages: the first frames left some.
+    if (render && m.stats.renders == 2 && m.config.release_startup_memory) ReleaseFreeHeapPages();
 
     const int64_t shown_arrival_us = render ? pending_arrival_us : 0;
     if (shown_arrival_us > 0) {

@@ -68,9 +68,10 @@ struct DaemonConfig {
   std::optional<std::array<float, 3>> camera_pos, camera_target;  // metres
   float fov_y_deg = 0;        // 0: the bake's
   int32_t white_q12 = 0;      // display white, LightQ12 cd/m^2; 0: the bake's
-  // After the second drawn frame, hand what only start-up needed back to the
-  // kernel: the shader compiler's pages (render/compiler_pages.h) and the
-  // heap's free pages; about 50 MB less RSS on the stage.
+  // Hand what only start-up needs back to the kernel (startup_memory.h):
+  // the shader compiler's pages, compiled out before the bake is read, and
+  // the heap's free pages after; about 50 MB less RSS on the stage, and a
+  // start-up peak about as low.
   bool release_startup_memory = true;
 };
 

@@ -103,9 +103,9 @@ int main(int argc, char** argv) {
   app.add_option("--white", white_cd_m2, "luminance shown as display white, cd/m^2")->check(CLI::Range(0.001, 1e7));
   bool keep_startup_memory = false;
   app.add_flag("--keep-startup-memory", keep_startup_memory,
-               "keep what only start-up needed resident (default: after the second frame, llvmpipe's shader "
-               "compiler pages, ~45 MB, and the heap's free pages go back to the kernel; a later shader "
-               "compile reads them again)");
+               "keep what only start-up needed resident (default: llvmpipe compiles its shaders on a stand-in "
+               "triangle before the bake is read, then its compiler's pages, ~45 MB, go back to the kernel, "
+               "and the heap's free pages once the bake is read; a later shader compile reads them again)");
   CLI11_PARSE(app, argc, argv);
   config.release_startup_memory = !keep_startup_memory;
 

@@ -1,13 +1,16 @@
 // What relightd's start-up needed and the show does not, handed back to the
-// kernel once frames flow (DaemonConfig::release_startup_memory): the shader
-// compiler's pages (render/compiler_pages.h) and the heap's free pages left
-// by reading the bake. Logs what it did. Call once, from the frame loop,
-// after the second drawn frame: by then llvmpipe has compiled every shader
-// the pipeline uses (the second draw at a camera adds the triangle-ID pass).
+// kernel (DaemonConfig::release_startup_memory), in two steps of Open:
+//  1. after FramePipeline::WarmUp has had llvmpipe compile every shader the
+//     frames use, and before the bake is read: the shader compiler's pages
+//     (render/compiler_pages.h), so they are never resident beside the bake;
+//  2. once the bake is read, and again after the second drawn frame: the
+//     heap's free pages left by reading the bake and by the first frames.
+// Each logs what it did.
 #pragma once
 
 namespace relight::daemon {
 
-void ReleaseStartupMemory();
+void ReleaseShaderCompiler();
+void ReleaseFreeHeapPages();
 
 }  // namespace relight::daemon

@@ -136,6 +136,7 @@ Status Engine::Open(const std::string& bake_path, const EngineOptions& options) 
   Bake bake;
   ReadBakeOptions read;
   read.hierarchy = options.surface_emitters;
+  read.grids = options.grids;
   RELIGHT_RETURN_IF_ERROR(ReadBake(bake_path, read, &bake));
   return Open(std::move(bake), options);
 }

@@ -89,6 +89,14 @@ struct OsMesaFrame::Impl {
 
   ~Impl() { Release(); }
 
+  // Forgets the mesh and what was drawn of it; the context stays.
+  void ForgetMesh() {
+    visible_valid = false;
+    draws_at_camera = 0;
+    last_drawn_triangles = 0;
+    has_drawn = false;
+  }
+
   void Release() {
     if (ctx != nullptr) {
       // Buffer objects die with the context; only one context lives at a time.
@@ -96,11 +104,17 @@ struct OsMesaFrame::Impl {
       ctx = nullptr;
     }
     position_vbo = color_vbo = index_vbo = id_position_vbo = id_color_vbo = visible_index_vbo = 0;
-    visible_valid = false;
-    draws_at_camera = 0;
-    last_drawn_triangles = 0;
+    ForgetMesh();
     width = height = 0;
-    has_drawn = false;
+  }
+
+  // A new mesh in the same context: its shaders, already compiled, stay.
+  Status DeleteMeshBuffers() {
+    const GLuint ids[6] = {position_vbo, color_vbo, index_vbo, id_position_vbo, id_color_vbo, visible_index_vbo};
+    glDeleteBuffers(6, ids);
+    position_vbo = color_vbo = index_vbo = id_position_vbo = id_color_vbo = visible_index_vbo = 0;
+    ForgetMesh();
+    return CheckGl("freeing the previous mesh");
   }
 
   Status MakeCurrent() {
@@ -243,8 +257,6 @@ int OsMesaFrame::height() const { return impl_->height; }
 
 Status OsMesaFrame::Init(int width, int height, const BakeMesh& mesh) {
   Impl& m = *impl_;
-  // A new context only after the old one is gone (PITFALLS: OSMesa).
-  m.Release();
   if (width < 1 || height < 1 || width > kMaxSide || height > kMaxSide) {
     return Status(StatusCode::kInvalidArgument,
                   StrFormat("render: frame size %dx%d outside 1..%d", width, height, kMaxSide));
@@ -266,6 +278,25 @@ Status OsMesaFrame::Init(int width, int height, const BakeMesh& mesh) {
     }
   }
 
+  if (m.ctx != nullptr && width == m.width && height == m.height) {
+    // The same frame size: keep the context, so llvmpipe compiles no shader
+    // again (a bake reload; the mesh of FramePipeline::WarmUp replaced).
+    m.vertex_count = vertex_count;
+    m.triangle_count = mesh.triangle_count();
+    Status st = m.MakeCurrent();
+    if (st.ok()) st = m.DeleteMeshBuffers();
+    if (st.ok()) st = m.Upload(mesh);
+    if (!st.ok()) {
+      m.Release();
+      return st;
+    }
+    m.UpdateCamera();
+    return Status::Ok();
+  }
+  // A new context only after the old one is gone (PITFALLS: OSMesa).
+  m.Release();
+  m.vertex_count = vertex_count;
+  m.triangle_count = mesh.triangle_count();
   const int attribs[] = {OSMESA_FORMAT,
                          OSMESA_RGBA,
                          OSMESA_DEPTH_BITS,
@@ -304,8 +335,6 @@ Status OsMesaFrame::Init(int width, int height, const BakeMesh& mesh) {
   glEnableClientState(GL_VERTEX_ARRAY);
   glEnableClientState(GL_COLOR_ARRAY);
 
-  m.vertex_count = vertex_count;
-  m.triangle_count = mesh.triangle_count();
   Status st = m.Upload(mesh);
   if (!st.ok()) {
     m.Release();

@@ -314,6 +314,11 @@ struct ReadBakeOptions {
   // places no light sources on surfaces: they are most of a hierarchical
   // bake's memory once read. Everything else is read and checked as always.
   bool hierarchy = true;
+  // false: the bake is read as if it had no calculation grid (Bake::grids
+  // empty, one receiver set per luminaire, no GLNK): the grids' bases and
+  // direct terms are skipped, neither decompressed nor kept, for a reader
+  // that shows surfaces only. Their sizes are still checked.
+  bool grids = true;
 };
 Status ReadBake(const std::string& path, const ReadBakeOptions& options, Bake* out);
 // Same, from bytes in memory (used by tests and fuzzing).

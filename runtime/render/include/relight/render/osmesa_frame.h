@@ -29,7 +29,9 @@ class OsMesaFrame {
   OsMesaFrame& operator=(const OsMesaFrame&) = delete;
 
   // Creates the context and uploads the mesh. kInvalidArgument for a zero or
-  // oversized frame, kInternal if OSMesa refuses a context.
+  // oversized frame, kInternal if OSMesa refuses a context. Called again at
+  // the same size, it keeps the context and its compiled shaders and only
+  // replaces the mesh (a bad mesh then leaves the old one in place).
   Status Init(int width, int height, const BakeMesh& mesh);
   void SetCamera(const CameraView& camera);
 
