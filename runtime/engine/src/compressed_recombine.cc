@@ -23,8 +23,13 @@ constexpr int kMinClusterShift = -31;
 
 // round(a 2^s / one) for 0 <= a <= 2^31 and `one` a weight of 1 (16383 or
 // 127), halves up; for s >= 0 a 2^s <= 2^62, for s < 0 the divisor
-// one 2^-s < 2^45: no overflow.
+// one 2^-s < 2^45: no overflow. `One` a template argument when it is one
+// of the two weights of 1: the compiler then divides by a multiply and a
+// shift (the same quotient), where a division by a variable costs tens of
+// cycles and a cluster's multipliers take 3 (r + 1) of them.
+template <int64_t kOne = 0>
 int64_t ScaledMagnitude(int64_t a, int s, int64_t one) {
+  if constexpr (kOne != 0) one = kOne;
   if (s >= 0) return ((a << s) + one / 2) / one;
   const int64_t d = one << -s;
   return (a + d / 2) / d;
@@ -48,12 +53,13 @@ int BitLength(uint64_t v) { return v == 0 ? 0 : 64 - __builtin_clzll(v); }
 // with a 2^s >= 2^bits(one) (limit + 1) gives more than the limit, and
 // a >= 2^(bits(a) - 1), so the answer is at most
 // bits(one) + bits(limit + 1) - bits(a).
+template <int64_t kOne>
 int LargestShift(int64_t a, int64_t limit, int64_t one) {
   if (a == 0) return kMaxClusterShift;
   int s = BitLength(static_cast<uint64_t>(one)) + BitLength(static_cast<uint64_t>(limit) + 1) -
           BitLength(static_cast<uint64_t>(a));
   s = s > kMaxClusterShift ? kMaxClusterShift : (s < kMinClusterShift ? kMinClusterShift : s);
-  while (s > kMinClusterShift && ScaledMagnitude(a, s, one) > limit) --s;
+  while (s > kMinClusterShift && ScaledMagnitude<kOne>(a, s, one) > limit) --s;
   return s;
 }
 
@@ -112,8 +118,10 @@ int32_t CompressedMultiplierLimit(uint32_t components, int32_t weight_one) {
   return limit < kCompressedWeightOne ? static_cast<int32_t>(limit) : kCompressedWeightOne;
 }
 
-void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, int32_t weight_one,
-                           ClusterMultipliers* m) {
+namespace {
+
+template <int64_t kOne>
+void MultipliersFor(const int32_t* projection, uint32_t components, int32_t weight_one, ClusterMultipliers* m) {
   const int64_t limit = CompressedMultiplierLimit(components, weight_one);
   for (int ch = 0; ch < 3; ++ch) {
     const int32_t mean = projection[ch];
@@ -124,15 +132,24 @@ void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, int32
       const int64_t a = p < 0 ? -p : p;
       if (a > largest) largest = a;
     }
-    const int s = LargestShift(largest, limit, weight_one);
+    const int s = LargestShift<kOne>(largest, limit, weight_one);
     m->shift[ch] = s;
     for (uint32_t j = 0; j < components; ++j) {
       const int64_t p = projection[(1 + j) * 3 + ch];
-      int64_t k = ScaledMagnitude(p < 0 ? -p : p, s, weight_one);
+      int64_t k = ScaledMagnitude<kOne>(p < 0 ? -p : p, s, weight_one);
       if (k > limit) k = limit;  // never for |P| < 2^31 at s = -31; kept as a guard
       m->k[ch * components + j] = static_cast<int16_t>(p < 0 ? -k : k);
     }
   }
+}
+
+}  // namespace
+
+void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, int32_t weight_one,
+                           ClusterMultipliers* m) {
+  if (weight_one == kCompressedWeightOne8) return MultipliersFor<kCompressedWeightOne8>(projection, components, weight_one, m);
+  if (weight_one == kCompressedWeightOne) return MultipliersFor<kCompressedWeightOne>(projection, components, weight_one, m);
+  MultipliersFor<0>(projection, components, weight_one, m);
 }
 
 void CompressedClusterScalarQ12(const int16_t* w, uint32_t n, uint32_t components,
