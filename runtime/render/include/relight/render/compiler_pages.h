@@ -3,14 +3,16 @@
 // and runs its static constructors, which pulls about 45 MB of its read-only
 // pages into the process (measured on the stage: docs/performance.md,
 // "Memory after the first frames"). Once the renderer's shaders are compiled
-// (relightd: the second drawn frame, which adds the triangle-ID pass), those
-// pages are not read again. The kernel would drop them under memory pressure
+// (relightd: FramePipeline::WarmUp, before the bake is read), those pages
+// are not read again. The kernel would drop them under memory pressure
 // anyway; this asks it to do so now (madvise MADV_PAGEOUT), so the box's
 // memory and relightd's RSS show what the show really holds.
 //
 // MADV_PAGEOUT never loses data: clean file pages are re-read from the file
 // if touched again (a later shader compile, e.g. a pick render, costs a few
-// page faults), dirty ones are only ever swapped. Linux 5.4 and later.
+// page faults), dirty ones are only ever swapped. Linux 5.4 and later. A
+// page another process maps too (a second renderer on the box) is shared
+// and stays resident: the kernel pages out only pages mapped once.
 //
 // No allocation; reads /proc/self/maps through a fixed buffer. Call from one
 // thread; other threads may run.
