@@ -311,11 +311,7 @@ Status Daemon::Open(const DaemonConfig& config) {
   m.engine_options.surface_emitters = !p.emitters.empty();
   m.engine_options.keep_direct_inputs = false;  // nothing here reads them after Open
   m.engine_options.grids = false;               // nor the grids: frames show the surfaces
-  if (config.release_startup_memory) {
-    // Shaders first, then the compiler out, then the bake: the two are never resident together.
-    RELIGHT_RETURN_IF_ERROR(m.pipeline.WarmUp(config.width, config.height));
-    ReleaseShaderCompiler();
-  }
+  if (config.release_startup_memory) RELIGHT_RETURN_IF_ERROR(CompileShadersThenReleaseCompiler(config, &m.pipeline));
   RELIGHT_RETURN_IF_ERROR(m.engine.Open(config.bake_path, m.engine_options));
   if (config.release_startup_memory) ReleaseFreeHeapPages();  // reading the bake left some
   RELIGHT_RETURN_IF_ERROR(hal::ResolvePatch(Luminaires(m.engine), &p));
@@ -405,8 +401,7 @@ Status Daemon::Run(const std::atomic<bool>& stop, std::atomic<bool>& reload) {
     }
     RELIGHT_RETURN_IF_ERROR(m.WriteSinks(frame));
     const int64_t out_us = MonotonicUs();
-    // The heap's free pages: the first frames left some.
-    if (render && m.stats.renders == 2 && m.config.release_startup_memory) ReleaseFreeHeapPages();
+    if (render && m.stats.renders == 2 && m.config.release_startup_memory) ReleaseFreeHeapPages();  // frames' leftovers
 
     const int64_t shown_arrival_us = render ? pending_arrival_us : 0;
     if (shown_arrival_us > 0) {

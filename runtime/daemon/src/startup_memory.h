@@ -8,9 +8,14 @@
 // Each logs what it did.
 #pragma once
 
+#include "daemon.h"
+#include "frame_pipeline.h"
+
 namespace relight::daemon {
 
-void ReleaseShaderCompiler();
+// Step 1: FramePipeline::WarmUp at the config's frame size, then the
+// compiler's pages out. Errors are WarmUp's.
+Status CompileShadersThenReleaseCompiler(const DaemonConfig& config, cli::FramePipeline* pipeline);
 void ReleaseFreeHeapPages();
 
 }  // namespace relight::daemon
