@@ -89,7 +89,24 @@ struct HierarchySolveQ32::Sweep {
   int64_t change[kEmitterSolveBlocks];
   Int128 l1[kEmitterSolveBlocks][3];  // sum over the leaves of |change|, per channel
   int64_t peak[kEmitterSolveBlocks];
+  Int128 num[3], den[3];  // the extrapolation's r / (1 - r) per channel
+  BlockStep step;
 };
+
+// step(sweep, block) for every block, the blocks dealt over the pool's
+// threads (their nodes are disjoint: each tree is in one block).
+void HierarchySolveQ32::RunOnBlocks(WorkerPool* pool, Sweep* sweep, BlockStep step) {
+  sweep->step = step;
+  const auto task = [](void* context, int thread) {
+    Sweep* s = static_cast<Sweep*>(context);
+    for (int block = thread; block < kEmitterSolveBlocks; block += s->self->threads_) (s->self->*(s->step))(s, block);
+  };
+  if (threads_ > 1) {
+    pool->Run(task, sweep);
+  } else {
+    task(sweep, 0);
+  }
+}
 
 Status HierarchySolveQ32::Init(const Bake& bake) {
   if (!bake.hierarchy) return Status(StatusCode::kUnsupported, "bake has no hierarchy");
@@ -225,10 +242,10 @@ void HierarchySolveQ32::Pull(uint32_t begin, uint32_t end, int64_t* b, int32_t* 
   const BakeHierarchy& h = *h_;
   for (uint32_t k = end; k-- > begin;) {  // children come after their parents
     if (h.leaf(k)) continue;
+    const uint32_t first = h.node_first_child[k], last = first + h.node_child_count[k];
     Int128 sum[3] = {0, 0, 0}, su[3] = {0, 0, 0}, sv[3] = {0, 0, 0};
-    const uint32_t first = h.node_first_child[k];
     const int32_t* ck = &centre_uv_q16_[2 * size_t{k}];
-    for (uint32_t c = first; c < first + h.node_child_count[k]; ++c) {
+    for (uint32_t c = first; c < last; ++c) {
       const Int128 w = child_weight_q32_[c];
       const int32_t* cc = &centre_uv_q16_[2 * size_t{c}];
       const int64_t du = int64_t{cc[0]} - ck[0], dv = int64_t{cc[1]} - ck[1];  // Q16 m
@@ -246,6 +263,16 @@ void HierarchySolveQ32::Pull(uint32_t begin, uint32_t end, int64_t* b, int32_t* 
       mv_[3 * size_t{k} + ch] = RoundShiftSat64(sv[ch], -32);
     }
     SetView(k, b, view, moment);
+  }
+}
+
+void HierarchySolveQ32::ViewBlock(Sweep* sweep, int block) {
+  int64_t* b = sweep->b;
+  for (uint32_t r = block_run_[block]; r < block_run_[block + 1]; ++r) {
+    const uint32_t begin = run_begin_[r], end = run_begin_[r + 1];
+    Pull(begin, end, b, view_[0].data(), moment_view_[0].data());
+    for (uint32_t k = begin; k < end; ++k)
+      if (h_->leaf(k)) SetView(k, b, view_[0].data(), moment_view_[0].data());
   }
 }
 
@@ -359,32 +386,19 @@ void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
 int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra_irradiance_q32,
                                 int64_t* b, WorkerPool* pool, int64_t peak_floor_q32) {
   const uint32_t n = node_count();
-  const size_t runs = run_begin_.size() - 1;
-  for (size_t r = 0; r < runs; ++r)
-    Pull(run_begin_[r], run_begin_[r + 1], b, view_[0].data(), moment_view_[0].data());
-  for (uint32_t k = 0; k < n; ++k)
-    if (h_->leaf(k)) SetView(k, b, view_[0].data(), moment_view_[0].data());
+  threads_ = pool != nullptr ? pool->threads() : 1;
+  Sweep sweep{this, emitted_q32, extra_irradiance_q32, b, {}, {}, {}, {}, {}, nullptr};
+  RunOnBlocks(pool, &sweep, &HierarchySolveQ32::ViewBlock);
   for (int k = 1; k < kEmitterSolveBlocks; ++k) {
     std::memcpy(view_[k].data(), view_[0].data(), size_t{n} * 4 * sizeof(int32_t));
     std::memcpy(moment_view_[k].data(), moment_view_[0].data(), moment_view_[0].size() * sizeof(int32_t));
   }
-  Sweep sweep{this, emitted_q32, extra_irradiance_q32, b, {}, {}, {}};
   Int128 l1_prev[3] = {0, 0, 0};
-  const auto task = [](void* context, int thread) {
-    Sweep* s = static_cast<Sweep*>(context);
-    for (int block = thread; block < kEmitterSolveBlocks; block += s->self->threads_)
-      s->self->SweepBlock(s, block);
-  };
-  threads_ = pool != nullptr ? pool->threads() : 1;
   int64_t previous = 0;
   int sweep_count = 0;
   while (sweep_count < kEmitterSolveMaxSweeps) {
     ++sweep_count;
-    if (threads_ > 1) {
-      pool->Run(task, &sweep);
-    } else {
-      task(&sweep, 0);
-    }
+    RunOnBlocks(pool, &sweep, &HierarchySolveQ32::SweepBlock);
     // Every block's nodes into every other block's view, for the next sweep.
     for (int from = 0; from < kEmitterSolveBlocks; ++from) {
       const size_t lo = 4 * size_t{run_begin_[block_run_[from]]};
@@ -414,7 +428,9 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra
       const bool done = capped ? lhs * 99 < peak
                                : lhs * change < static_cast<Int128>(peak) * (previous - change);
       if (done) {
-        Extrapolate(b, l1, l1_prev);
+        ExtrapolationRatios(l1, l1_prev, sweep.num, sweep.den);
+        if (sweep.num[0] != 0 || sweep.num[1] != 0 || sweep.num[2] != 0)
+          RunOnBlocks(pool, &sweep, &HierarchySolveQ32::ExtrapolateBlock);
         break;
       }
     }
@@ -424,20 +440,13 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra
   return sweep_count;
 }
 
-// The rest of the series, then the inner nodes and the view from the leaves
-// (surface_emitter_extrapolate.h).
-void HierarchySolveQ32::Extrapolate(int64_t* b, const Int128* l1, const Int128* l1_before) {
-  const BakeHierarchy& h = *h_;
-  const uint32_t n = node_count();
-  Int128 num[3], den[3];
-  ExtrapolationRatios(l1, l1_before, num, den);
-  if (num[0] == 0 && num[1] == 0 && num[2] == 0) return;
-  ExtrapolateLeaves(n, h.node_child_count.data(), delta_.data(), num, den, b);
-  for (size_t r = 0; r + 1 < run_begin_.size(); ++r)
-    Pull(run_begin_[r], run_begin_[r + 1], b, view_[0].data(), moment_view_[0].data());
-  for (uint32_t k = 0; k < n; ++k)
-    if (h.leaf(k)) SetView(k, b, view_[0].data(), moment_view_[0].data());
+// The rest of the series on a block's leaves (surface_emitter_extrapolate.h),
+// then its inner nodes and view from them.
+void HierarchySolveQ32::ExtrapolateBlock(Sweep* sweep, int block) {
+  const uint32_t begin = run_begin_[block_run_[block]], end = run_begin_[block_run_[block + 1]];
+  ExtrapolateLeaves(end - begin, h_->node_child_count.data() + begin, delta_.data() + 3 * size_t{begin}, sweep->num,
+                    sweep->den, sweep->b + 3 * size_t{begin});
+  ViewBlock(sweep, block);
 }
-
 
 }  // namespace relight

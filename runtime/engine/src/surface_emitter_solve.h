@@ -97,7 +97,11 @@ class HierarchySolveQ32 {
   void Pull(uint32_t begin, uint32_t end, int64_t* b, int32_t* view, int32_t* moment);
   void SetView(uint32_t k, const int64_t* b, int32_t* view, int32_t* moment) const;
   int32_t ToView(int64_t b_q32) const;
-  void Extrapolate(int64_t* b, const Int128* l1, const Int128* l1_prev);
+  using BlockStep = void (HierarchySolveQ32::*)(Sweep* sweep, int block);
+  void RunOnBlocks(WorkerPool* pool, Sweep* sweep, BlockStep step);
+  // A block's inner nodes pulled up from its leaves, and its view (view_[0]).
+  void ViewBlock(Sweep* sweep, int block);
+  void ExtrapolateBlock(Sweep* sweep, int block);
   int32_t ToMomentView(int64_t m_q32) const;
   void AddMoments(const EmitterMomentEntry* e, uint32_t count, const int32_t* moment, int64_t a[3]) const;
 
