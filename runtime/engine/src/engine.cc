@@ -55,8 +55,7 @@ struct Engine::Impl {
     for (BakeLuminaire& b : bake.luminaires) {
       for (BakeLightReceivers& rx : b.receivers) TileCompressedWeights(&rx.compressed);
     }
-    RELIGHT_RETURN_IF_ERROR(SetUpLuminaires(bake, &lums, &work));
-    if (!options.keep_direct_inputs) ReleasePreparedDirectInputs(&bake, lums);
+    RELIGHT_RETURN_IF_ERROR(SetUpLuminaires(&bake, !options.keep_direct_inputs, &lums, &work));
     SizeOutputs(bake, &out, &mix);
     RELIGHT_RETURN_IF_ERROR(emitters.Open(bake, options.emitter_refine_links));
     emitter_grids.Open(bake);

@@ -73,15 +73,17 @@ Q1_15 ClampUnit(Q1_15 v);
 // table and damped weights, or the sigma-damped SH coefficients), default
 // state, caches. The bake must have passed ValidateBake. Returns
 // kInvalidArgument naming the luminaire if its LID cannot be expanded.
-Status SetUpLuminaires(const Bake& bake, std::vector<LuminaireRuntime>* lums,
+// release_direct_inputs: each luminaire's ReleasePreparedDirectInputs right
+// after its set-up (EngineOptions::keep_direct_inputs false), so the bake's
+// copy and the prepared one are held for one luminaire at a time.
+Status SetUpLuminaires(Bake* bake, bool release_direct_inputs, std::vector<LuminaireRuntime>* lums,
                        CacheWorkspace* work);
 
-// Frees the bake's per-receiver direction and geometry of every luminaire
-// whose direct term now reads its DirectPoints (exact direct, axisymmetric
-// LID): the kernels read only their copy after SetUpLuminaires
-// (EngineOptions::keep_direct_inputs). A (C, gamma) LID keeps them: its
-// direct term reads them.
-void ReleasePreparedDirectInputs(Bake* bake, const std::vector<LuminaireRuntime>& lums);
+// Frees the bake's per-receiver direction and geometry of a luminaire whose
+// direct term now reads its DirectPoints (exact direct, axisymmetric LID):
+// the kernels read only their copy after its set-up. A (C, gamma) LID keeps
+// them: its direct term reads them.
+void ReleasePreparedDirectInputs(BakeLuminaire* b, const LuminaireRuntime& l);
 
 // Dobashi 4.1: sample `sample` of an axisymmetric LID moves to candela_q16;
 // Eq. 21 updates the weights by its increment alone, O(N), and marks the

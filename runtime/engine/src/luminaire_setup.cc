@@ -91,8 +91,9 @@ static size_t MaxCompressedProjection(const Bake& bake) {
   return static_cast<size_t>(most);
 }
 
-Status SetUpLuminaires(const Bake& bake, std::vector<LuminaireRuntime>* lums,
+Status SetUpLuminaires(Bake* bake_in, bool release_direct_inputs, std::vector<LuminaireRuntime>* lums,
                        CacheWorkspace* work) {
+  const Bake& bake = *bake_in;
   InitShTables(&work->sh);
   (void)SharedGammaTable();  // built here, not in an Update()
   const uint32_t sets = bake.receiver_set_count();
@@ -129,6 +130,8 @@ Status SetUpLuminaires(const Bake& bake, std::vector<LuminaireRuntime>* lums,
                             &l.sets[s].direct_points);
       }
     }
+    // Luminaire by luminaire, so the next one's points can take the freed room.
+    if (release_direct_inputs) ReleasePreparedDirectInputs(&bake_in->luminaires[i], l);
   }
   work->compressed_projection.assign(MaxCompressedProjection(bake), 0);
   work->zoom_samples_q16.assign(max_zoom_samples, 0);
@@ -141,14 +144,11 @@ Status SetUpLuminaires(const Bake& bake, std::vector<LuminaireRuntime>* lums,
   return Status::Ok();
 }
 
-void ReleasePreparedDirectInputs(Bake* bake, const std::vector<LuminaireRuntime>& lums) {
-  for (size_t i = 0; i < lums.size(); ++i) {
-    BakeLuminaire& b = bake->luminaires[i];
-    if (b.direct_mode != DirectMode::kExactDirect || lums[i].has_table) continue;
-    for (BakeLightReceivers& rx : b.receivers) {
-      std::vector<int16_t>().swap(rx.direction);
-      std::vector<uint32_t>().swap(rx.geometry);
-    }
+void ReleasePreparedDirectInputs(BakeLuminaire* b, const LuminaireRuntime& l) {
+  if (b->direct_mode != DirectMode::kExactDirect || l.has_table) return;
+  for (BakeLightReceivers& rx : b->receivers) {
+    std::vector<int16_t>().swap(rx.direction);
+    std::vector<uint32_t>().swap(rx.geometry);
   }
 }
 
