@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "relight/baker/baker.h"
@@ -109,6 +110,67 @@ TEST(SurfaceEmitterIncremental, MoveSolvedFromThePreviousMatchesASolveFromNothin
   EXPECT_LE(mean_rel, 1e-4);
   EXPECT_LT(sweeps_moved, sweeps_placed);
   RecordProperty("dragged_vs_placed_max_over_peak", std::to_string(max_rel));
+}
+
+// A longer drag, as a panel is dragged: after a move that took two sweeps the
+// slot's next moves may stop after one (the last move's contraction as a
+// hint, surface_emitter_solve.h SweepContraction). Every place the drag
+// passes and where it ends agree with solves from nothing to the same bars as
+// above, and some moves took one sweep.
+TEST(SurfaceEmitterIncremental, ADragStopsAfterOneSweepWhereTheLastMoveSaysItMay) {
+  Engine dragged, placed;
+  ASSERT_TRUE(dragged.Open(Bake(BoxBake())).ok());
+  ASSERT_TRUE(placed.Open(Bake(BoxBake())).ok());
+  for (Engine* e : {&dragged, &placed}) {
+    for (int i = 0; i < e->luminaire_count(); ++i) ASSERT_TRUE(e->SetDimmer(i, Q1_15::FromRaw(0)).ok());
+  }
+  ASSERT_TRUE(dragged.SetSurfaceEmitter(0, Ceiling(0, 0), kLight).ok());
+  dragged.Update();
+  int one_sweep = 0, most = 0;
+  double worst_max = 0, worst_mean = 0;
+  std::string sweeps;
+  for (int step = 1; step <= 10; ++step) {
+    // Round a 1 cm square, drifting 2 mm a step (a drag at frame rate): never
+    // back on a place solved before.
+    const double dx = 0.01 * ((step / 2) % 2) + 0.002 * step, dy = 0.01 * (((step + 1) / 2) % 2);
+    ASSERT_TRUE(dragged.SetSurfaceEmitter(0, Ceiling(dx, dy), kLight).ok());
+    dragged.Update();
+    ASSERT_EQ(dragged.last_update_emitters_solved(), 1);
+    const int n = dragged.last_update_emitter_sweeps();
+    sweeps += std::to_string(n) + " ";
+    one_sweep += n == 1 ? 1 : 0;
+    most = std::max(most, n);
+    ASSERT_TRUE(placed.RemoveSurfaceEmitter(0).ok());
+    placed.Update();
+    ASSERT_TRUE(placed.SetSurfaceEmitter(1, Ceiling(dx, dy), kLight).ok());  // a fresh slot: from nothing
+    placed.Update();
+    ASSERT_TRUE(placed.RemoveSurfaceEmitter(1).ok());
+    ASSERT_TRUE(placed.SetSurfaceEmitter(0, Ceiling(dx, dy), kLight).ok());
+    placed.Update();
+    const std::vector<int32_t> a = Luminance(dragged), b = Luminance(placed);
+    int32_t peak = 0;
+    int64_t max_diff = 0, sum_diff = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+      peak = std::max(peak, b[i]);
+      const int64_t d = std::llabs(int64_t{a[i]} - b[i]);
+      max_diff = std::max(max_diff, d);
+      sum_diff += d;
+    }
+    ASSERT_GT(peak, 0);
+    worst_max = std::max(worst_max, static_cast<double>(max_diff) / peak);
+    worst_mean = std::max(worst_mean, static_cast<double>(sum_diff) / static_cast<double>(a.size()) / peak);
+  }
+  // A jump of 20 cm straight after: its first sweep changes too much for the hint.
+  ASSERT_TRUE(dragged.SetSurfaceEmitter(0, Ceiling(0.2, 0.02), kLight).ok());
+  dragged.Update();
+  const int jump = dragged.last_update_emitter_sweeps();
+  std::printf("[ measured ] drag of 10 moves, sweeps: %s; worst against solves from nothing: max %.2e, "
+              "mean %.2e of peak; a 20 cm jump after it: %d sweeps\n", sweeps.c_str(), worst_max, worst_mean, jump);
+  EXPECT_GE(jump, 2);
+  EXPECT_GE(one_sweep, 3);
+  EXPECT_LE(most, 3);
+  EXPECT_LE(worst_max, 1e-3);
+  EXPECT_LE(worst_mean, 1e-4);
 }
 
 TEST(SurfaceEmitterIncremental, OneThreadAndTwoGiveTheSameBits) {

@@ -79,6 +79,19 @@ void GatherInner(const EmitterGatherEntry* e, const int32_t* g, uint32_t count, 
   v[0] = v0, v[1] = v1, v[2] = v2;
 }
 
+// The stopping rule after a first sweep, with the hint's ratio r of its first
+// two sweeps' largest changes (at least 1/8, so a hint that saw a very fast
+// drop cannot stop a solve whose first change is large): the remaining
+// change x r / (1 - r) below 2^-11 of the peak.
+bool FirstSweepSuffices(int64_t change, int64_t peak, const SweepContraction& hint) {
+  int64_t first = hint.change[0], second = hint.change[1];
+  // first < 2^55 and change < 2^55 (the caller) keep both products below 2^127.
+  if (first <= 0 || second <= 0 || second >= first || first >= (int64_t{1} << 55)) return false;
+  if (second < first / 8) second = first / 8;
+  const Int128 lhs = static_cast<Int128>(change) << kEmitterSolveToleranceLog2;
+  return lhs * second < static_cast<Int128>(peak) * (first - second);
+}
+
 }  // namespace
 
 struct HierarchySolveQ32::Sweep {
@@ -384,7 +397,11 @@ void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
 }
 
 int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra_irradiance_q32,
-                                int64_t* b, WorkerPool* pool, int64_t peak_floor_q32) {
+                                int64_t* b, WorkerPool* pool, int64_t peak_floor_q32, const SweepContraction* hint,
+                                SweepContraction* seen) {
+  const SweepContraction given = hint != nullptr ? *hint : SweepContraction{};  // seen may be the hint
+  hint = &given;
+  if (seen != nullptr) *seen = SweepContraction{};
   const uint32_t n = node_count();
   threads_ = pool != nullptr ? pool->threads() : 1;
   Sweep sweep{this, emitted_q32, extra_irradiance_q32, b, {}, {}, {}, {}, {}, nullptr};
@@ -418,7 +435,23 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra
       if (sweep.peak[k] > peak) peak = sweep.peak[k];
       for (int ch = 0; ch < 3; ++ch) l1[ch] += sweep.l1[k][ch];
     }
+    if (seen != nullptr && sweep_count <= 2) {
+      seen->change[sweep_count - 1] = change;
+      for (int ch = 0; ch < 3; ++ch) seen->l1[sweep_count - 1][ch] = l1[ch];
+      seen->valid = sweep_count == 2 && change < seen->change[0];
+    }
     if (change == 0) break;
+    if (sweep_count == 1 && hint->valid && hint->reused < kMaxContractionReuse &&
+        change < (int64_t{1} << 55) && FirstSweepSuffices(change, peak, *hint)) {
+      if (seen != nullptr) {
+        *seen = *hint;
+        ++seen->reused;
+      }
+      ExtrapolationRatios(hint->l1[1], hint->l1[0], sweep.num, sweep.den);
+      if (sweep.num[0] != 0 || sweep.num[1] != 0 || sweep.num[2] != 0)
+        RunOnBlocks(pool, &sweep, &HierarchySolveQ32::ExtrapolateBlock);
+      break;
+    }
     // change >= 2^55 would overflow the 128-bit test below; such a solve is
     // far from converged anyway.
     if (sweep_count >= 2 && change < previous && change < (int64_t{1} << 55)) {

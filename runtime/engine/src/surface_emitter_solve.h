@@ -56,6 +56,22 @@ inline constexpr int kEmitterSolveToleranceLog2 = 11;
 // count, so the bits do not depend on it).
 inline constexpr int kEmitterSolveBlocks = 2;
 
+// How fast a solve's sweeps contracted: the largest change of its first two
+// sweeps and their sums of |change| per channel. A drag (an emitter moved a
+// few centimetres at a time) repeats the same contraction from solve to
+// solve, so the next solve can stop after one sweep where this one needed
+// two (SolveRgb's `hint`).
+// A one-sweep solve hands its hint on with `reused` one more; a hint reused
+// kMaxContractionReuse times is not taken, so a long drag measures again
+// every few solves.
+inline constexpr int kMaxContractionReuse = 3;
+struct SweepContraction {
+  bool valid = false;
+  int reused = 0;
+  int64_t change[2] = {0, 0};
+  Int128 l1[2][3] = {{0, 0, 0}, {0, 0, 0}};
+};
+
 class HierarchySolveQ32 {
  public:
   // Needs bake.hierarchy (kUnsupported without); the bake must outlive this.
@@ -72,9 +88,15 @@ class HierarchySolveQ32 {
   // `pool` may be null (one thread). peak_floor_q32: the stopping rule's
   // peak exitance is at least this (adaptive refine passes its emitter's own
   // exitance, which is then not in emitted_q32, so the solve stops where it
-  // would with the emitter in it). Returns the sweeps it took.
+  // would with the emitter in it). hint: null, or what the emitter's last
+  // solve from a nearby start saw (SweepContraction); with it the rule may
+  // stop after the first sweep, taking that solve's ratio of its first two
+  // sweeps (at least 1/8) as this one's. seen: null, or where this solve's
+  // contraction goes (valid when it took two sweeps or more). Returns the
+  // sweeps it took.
   int SolveRgb(const int64_t* emitted_q32, const int64_t* extra_irradiance_q32, int64_t* exitance_q32,
-               WorkerPool* pool, int64_t peak_floor_q32 = 0);
+               WorkerPool* pool, int64_t peak_floor_q32 = 0, const SweepContraction* hint = nullptr,
+               SweepContraction* seen = nullptr);
   // Adds emitted_q32 (per node, leaves only, the same in every channel) to
   // the leaves of exitance_q32 and pulls the inner nodes up again;
   // exitance_q24() follows. Adaptive refine solves without its emitter's

@@ -167,6 +167,13 @@ int SurfaceEmitters::SolvePending(WorkerPool* pool) {
     StartFrom(s, s.now.exitance_q32.data(), &warm);
     last_warm_ += warm ? 1 : 0;
     const uint32_t n = solver_.node_count();
+    // A move starts where the last solve left off: the slot's last move
+    // says how fast its sweeps will contract. A new light neither takes
+    // nor leaves a hint.
+    if (!warm || s.drag_refined != s.now.refined) s.drag = SweepContraction{};
+    const SweepContraction* hint = warm ? &s.drag : nullptr;
+    SweepContraction* seen = warm ? &s.drag : nullptr;
+    s.drag_refined = s.now.refined;
     if (s.now.refined) {
       // AR: the emitter's light reaches the leaves as the first shot; the
       // solve interreflects it, stopping against the emitter's own unit
@@ -175,10 +182,11 @@ int SurfaceEmitters::SolvePending(WorkerPool* pool) {
         for (int c = 0; c < 3; ++c) extra_[3 * size_t{k} + c] = s.now.first_shot_q32[k];
       if (!warm) solver_.ReflectedStart(extra_.data(), s.now.exitance_q32.data());
       last_sweeps_ += solver_.SolveRgb(no_emission_.data(), extra_.data(), s.now.exitance_q32.data(), pool,
-                                       int64_t{1} << kCoverageFracBits);
+                                       int64_t{1} << kCoverageFracBits, hint, seen);
       solver_.AddEmitted(s.now.coverage_q32.data(), s.now.exitance_q32.data());
     } else {
-      last_sweeps_ += solver_.SolveRgb(s.now.coverage_q32.data(), nullptr, s.now.exitance_q32.data(), pool);
+      last_sweeps_ += solver_.SolveRgb(s.now.coverage_q32.data(), nullptr, s.now.exitance_q32.data(), pool, 0,
+                                       hint, seen);
     }
     if (observer_ != nullptr) observer_->OnSolved(slot, s.now.exitance_q32.data());
     // Unit luminance L = 1 cd/m^2 emits M = pi L; the vertex luminance is

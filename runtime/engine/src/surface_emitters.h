@@ -90,6 +90,10 @@ class SurfaceEmitters {
     bool restored = false;  // `now` came back without a solve: the observer is yet to see it
     int32_t luminance_q12[3] = {0, 0, 0};
     Solution now, before;  // before: the last solved placement the slot moved from
+    // The contraction of the slot's last solve from a nearby start (a move),
+    // and whether it was adaptive refine's: the next move's hint.
+    SweepContraction drag;
+    bool drag_refined = false;
   };
   Status CheckSlot(int slot) const;
   void StartFrom(const Slot& s, int64_t* exitance_q32, bool* warm) const;
