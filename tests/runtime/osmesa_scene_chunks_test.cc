@@ -1,5 +1,5 @@
 // Draws of every triangle go to llvmpipe in scenes of at most 2048
-// triangles (osmesa_frame.cc kTrianglesPerScene), which bounds its bins at
+// triangles (scene_chunks.h kTrianglesPerScene), which bounds its bins at
 // start-up: a mesh of three scenes and a bit, every triangle in view, must
 // come out whole -- every triangle in the ID pass, and the first (chunked)
 // colour draw the same pixels as the culled draws that follow, which send

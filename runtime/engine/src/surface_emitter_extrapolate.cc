@@ -38,4 +38,13 @@ void ExtrapolateLeaves(uint32_t nodes, const uint8_t* child_count, const int64_t
   }
 }
 
+bool FirstSweepSuffices(int64_t change, int64_t peak, const SweepContraction& hint, int tolerance_log2) {
+  int64_t first = hint.change[0], second = hint.change[1];
+  // first < 2^55 and change < 2^55 (the caller) keep both products below 2^127.
+  if (first <= 0 || second <= 0 || second >= first || first >= (int64_t{1} << 55)) return false;
+  if (second < first / 8) second = first / 8;
+  const Int128 lhs = static_cast<Int128>(change) << tolerance_log2;
+  return lhs * second < static_cast<Int128>(peak) * (first - second);
+}
+
 }  // namespace relight

@@ -28,4 +28,27 @@ void ExtrapolationRatios(const Int128 l1[3], const Int128 l1_before[3], Int128 n
 void ExtrapolateLeaves(uint32_t nodes, const uint8_t* child_count, const int64_t* delta, const Int128 num[3],
                        const Int128 den[3], int64_t* b);
 
+// How fast a solve's sweeps contracted: the largest change of its first two
+// sweeps and their sums of |change| per channel. A drag (an emitter moved a
+// few centimetres at a time) repeats the same contraction from solve to
+// solve, so the next solve can stop after one sweep where this one needed
+// two (SolveRgb's `hint`).
+// A one-sweep solve hands its hint on with `reused` one more; a hint reused
+// kMaxContractionReuse times is not taken, so a long drag measures again
+// every few solves.
+inline constexpr int kMaxContractionReuse = 3;
+struct SweepContraction {
+  bool valid = false;
+  int reused = 0;
+  int64_t change[2] = {0, 0};
+  Int128 l1[2][3] = {{0, 0, 0}, {0, 0, 0}};
+};
+
+// The stopping rule after a first sweep whose largest change is `change`
+// (< 2^55), with the hint's ratio r of its first two sweeps' largest changes
+// (at least 1/8, so a hint that saw a very fast drop cannot stop a solve
+// whose first change is large): true when change x r / (1 - r) is below
+// 2^-tolerance_log2 of `peak`.
+bool FirstSweepSuffices(int64_t change, int64_t peak, const SweepContraction& hint, int tolerance_log2);
+
 }  // namespace relight

@@ -23,6 +23,7 @@
 
 #include "relight/base/fixed_ops.h"
 #include "surface_emitter_frame.h"
+#include "surface_emitter_gather.h"
 #include "surface_emitter_gather_avx2.h"
 #include "surface_emitter_extrapolate.h"
 #include "surface_emitter_moments.h"
@@ -42,55 +43,6 @@ constexpr int kMomentViewShift = kViewShift + 4;
 // Moment weights before the shift t: Q36 per metre (Q36 x Q20 = Q56).
 static_assert(kMomentWeightFracBits + kExitanceFracBits - kMomentViewShift == kGatherFracBits + 32,
               "moment products and factor products must both be Q56");
-
-// The scalar gathers (surface_emitter_gather_avx2.h has the contract).
-void GatherLeaf(const EmitterGatherEntry* e, uint32_t count, const int32_t* view, int64_t a[3]) {
-  int64_t a0 = 0, a1 = 0, a2 = 0;
-  for (uint32_t i = 0; i < count; ++i) {
-    const int32_t* src = &view[4 * size_t{e[i].source}];
-    const int64_t f = e[i].f;
-    a0 += f * src[0];
-    a1 += f * src[1];
-    a2 += f * src[2];
-  }
-  a[0] = a0;
-  a[1] = a1;
-  a[2] = a2;
-}
-
-void GatherInner(const EmitterGatherEntry* e, const int32_t* g, uint32_t count, const int32_t* view, int64_t a[3],
-                 int64_t u[3], int64_t v[3]) {
-  int64_t a0 = 0, a1 = 0, a2 = 0, u0 = 0, u1 = 0, u2 = 0, v0 = 0, v1 = 0, v2 = 0;
-  for (uint32_t i = 0; i < count; ++i) {
-    const int32_t* src = &view[4 * size_t{e[i].source}];
-    const int64_t f = e[i].f, du = g[2 * i], dv = g[2 * i + 1];
-    a0 += f * src[0];
-    a1 += f * src[1];
-    a2 += f * src[2];
-    u0 += du * src[0];
-    u1 += du * src[1];
-    u2 += du * src[2];
-    v0 += dv * src[0];
-    v1 += dv * src[1];
-    v2 += dv * src[2];
-  }
-  a[0] = a0, a[1] = a1, a[2] = a2;
-  u[0] = u0, u[1] = u1, u[2] = u2;
-  v[0] = v0, v[1] = v1, v[2] = v2;
-}
-
-// The stopping rule after a first sweep, with the hint's ratio r of its first
-// two sweeps' largest changes (at least 1/8, so a hint that saw a very fast
-// drop cannot stop a solve whose first change is large): the remaining
-// change x r / (1 - r) below 2^-11 of the peak.
-bool FirstSweepSuffices(int64_t change, int64_t peak, const SweepContraction& hint) {
-  int64_t first = hint.change[0], second = hint.change[1];
-  // first < 2^55 and change < 2^55 (the caller) keep both products below 2^127.
-  if (first <= 0 || second <= 0 || second >= first || first >= (int64_t{1} << 55)) return false;
-  if (second < first / 8) second = first / 8;
-  const Int128 lhs = static_cast<Int128>(change) << kEmitterSolveToleranceLog2;
-  return lhs * second < static_cast<Int128>(peak) * (first - second);
-}
 
 }  // namespace
 
@@ -442,7 +394,7 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra
     }
     if (change == 0) break;
     if (sweep_count == 1 && hint->valid && hint->reused < kMaxContractionReuse &&
-        change < (int64_t{1} << 55) && FirstSweepSuffices(change, peak, *hint)) {
+        change < (int64_t{1} << 55) && FirstSweepSuffices(change, peak, *hint, kEmitterSolveToleranceLog2)) {
       if (seen != nullptr) {
         *seen = *hint;
         ++seen->reused;

@@ -27,6 +27,7 @@
 #include "relight/bake/bake.h"
 #include "relight/base/fixed.h"
 #include "relight/base/status.h"
+#include "surface_emitter_extrapolate.h"
 #include "surface_emitter_gather_avx2.h"
 #include "surface_emitter_moments.h"
 #include "worker_pool.h"
@@ -55,22 +56,6 @@ inline constexpr int kEmitterSolveToleranceLog2 = 11;
 // Fixed partition of the surfaces for the parallel sweep (not the thread
 // count, so the bits do not depend on it).
 inline constexpr int kEmitterSolveBlocks = 2;
-
-// How fast a solve's sweeps contracted: the largest change of its first two
-// sweeps and their sums of |change| per channel. A drag (an emitter moved a
-// few centimetres at a time) repeats the same contraction from solve to
-// solve, so the next solve can stop after one sweep where this one needed
-// two (SolveRgb's `hint`).
-// A one-sweep solve hands its hint on with `reused` one more; a hint reused
-// kMaxContractionReuse times is not taken, so a long drag measures again
-// every few solves.
-inline constexpr int kMaxContractionReuse = 3;
-struct SweepContraction {
-  bool valid = false;
-  int reused = 0;
-  int64_t change[2] = {0, 0};
-  Int128 l1[2][3] = {{0, 0, 0}, {0, 0, 0}};
-};
 
 class HierarchySolveQ32 {
  public:

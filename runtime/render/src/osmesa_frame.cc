@@ -17,6 +17,7 @@
 
 #include "camera.h"
 #include "rgba_rows.h"
+#include "scene_chunks.h"
 #include "visible_triangles.h"
 
 namespace relight {
@@ -47,34 +48,6 @@ Status CheckGl(const char* where) {
 }
 
 GLsizeiptr Bytes(size_t count, size_t elem_size) { return static_cast<GLsizeiptr>(count * elem_size); }
-
-// llvmpipe bins a whole scene (every triangle drawn since the last flush)
-// before it rasterises, and frees the bins' blocks after: the stage's 32 270
-// triangles held 3.7 MB of bins at once, the peak of relightd's start-up. The
-// draws of every triangle (a first frame, the ID pass of a new camera) send
-// at most this many a scene; a flush between them keeps the order, so the
-// pixels are the same. The culled draws of the frames that follow (a third of
-// the triangles) stay whole: a flush costs a pass over every tile (measured:
-// 4096 a scene for them too added 0.8 ms to the draw's median).
-constexpr uint32_t kTrianglesPerScene = 2048;
-
-// glDrawArrays / glDrawElements (bound element buffer, unsigned int indices)
-// of `triangles` triangles, `per_scene` at a time.
-void DrawTriangleArrays(uint32_t triangles, uint32_t per_scene) {
-  for (uint32_t first = 0; first < triangles; first += per_scene) {
-    if (first > 0) glFlush();
-    const uint32_t n = std::min(per_scene, triangles - first);
-    glDrawArrays(GL_TRIANGLES, static_cast<GLint>(first * 3), static_cast<GLsizei>(n * 3));
-  }
-}
-void DrawTriangleElements(uint32_t triangles, uint32_t per_scene) {
-  for (uint32_t first = 0; first < triangles; first += per_scene) {
-    if (first > 0) glFlush();
-    const uint32_t n = std::min(per_scene, triangles - first);
-    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(n * 3), GL_UNSIGNED_INT,
-                   reinterpret_cast<const void*>(size_t{first} * 3 * sizeof(GLuint)));
-  }
-}
 
 }  // namespace
 
@@ -256,7 +229,7 @@ Status OsMesaFrame::Impl::DrawIdPass() {
     glColorPointer(3, GL_UNSIGNED_BYTE, 0, nullptr);
     glBindBuffer(GL_ARRAY_BUFFER, id_position_vbo);
     glVertexPointer(3, GL_FLOAT, 0, nullptr);
-    DrawTriangleArrays(triangle_count, kTrianglesPerScene);
+    render::DrawTriangleArrays(triangle_count, render::kTrianglesPerScene);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
   }
   glShadeModel(GL_SMOOTH);
@@ -410,7 +383,7 @@ Status OsMesaFrame::Draw(const uint8_t* vertex_rgb8, uint8_t* out_rgb8) {
     glBindBuffer(GL_ARRAY_BUFFER, m.position_vbo);
     glVertexPointer(3, GL_FLOAT, 0, nullptr);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, culled ? m.visible_index_vbo : m.index_vbo);
-    DrawTriangleElements(drawn, culled ? drawn : kTrianglesPerScene);
+    render::DrawTriangleElements(drawn, culled ? drawn : render::kTrianglesPerScene);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
   }
