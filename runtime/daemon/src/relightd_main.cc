@@ -103,7 +103,8 @@ int main(int argc, char** argv) {
   app.add_option("--white", white_cd_m2, "luminance shown as display white, cd/m^2")->check(CLI::Range(0.001, 1e7));
   bool keep_startup_memory = false;
   app.add_flag("--keep-startup-memory", keep_startup_memory,
-               "keep what only start-up needed resident (default: llvmpipe compiles its shaders on a stand-in "
+               "keep what only start-up needed resident (default: blocks of 128 KiB or more get their own "
+               "mappings, so what start-up frees goes back at once; llvmpipe compiles its shaders on a stand-in "
                "triangle before the bake is read, then its compiler's pages, ~45 MB, go back to the kernel, "
                "and the heap's free pages once the bake is read; a later shader compile reads them again)");
   CLI11_PARSE(app, argc, argv);
