@@ -173,6 +173,43 @@ TEST(SurfaceEmitterIncremental, ADragStopsAfterOneSweepWhereTheLastMoveSaysItMay
   EXPECT_LE(worst_mean, 1e-4);
 }
 
+// A move's set-up pulls only the changed leaves' ancestors when the solver
+// still holds the slot's last solution (HierarchySolveQ32::StartNear), and
+// gives the same bits as the whole pull it replaces: a second engine, whose
+// other slot (at zero luminance) solves between the moves so that every move
+// takes the whole pull, shows the same vertices after every move of a drag.
+TEST(SurfaceEmitterIncremental, AMoveSetUpFromTheChangedLeavesGivesTheWholePullsBits) {
+  Engine near, whole;
+  ASSERT_TRUE(near.Open(Bake(BoxBake())).ok());
+  ASSERT_TRUE(whole.Open(Bake(BoxBake())).ok());
+  const LightQ12 off[3] = {LightQ12::FromRaw(0), LightQ12::FromRaw(0), LightQ12::FromRaw(0)};
+  for (Engine* e : {&near, &whole}) {
+    ASSERT_TRUE(e->SetSurfaceEmitter(0, Ceiling(0, 0), kLight).ok());
+    e->Update();
+  }
+  const auto fe = [](SurfaceEmitterShape shape) {  // StartNear is fractional emissivity's
+    shape.method = SurfaceEmitterMethod::kFractionalEmissivity;
+    return shape;
+  };
+  int solves_between = 0;
+  for (int step = 1; step <= 8; ++step) {
+    const double dx = 0.01 * ((step / 2) % 2) + 0.003 * step, dy = 0.01 * (((step + 1) / 2) % 2);
+    // The other slot somewhere new each time: a solve of its own.
+    const double f = 0.01 * step;
+    ASSERT_TRUE(whole.SetSurfaceEmitter(1, MakeShape("floor", {{0.2 + f, 0.2, 0}, {0.5 + f, 0.25, 0}, {0.35 + f, 0.5, 0}}),
+                                        off).ok());
+    whole.Update();
+    solves_between += whole.last_update_emitters_solved();
+    for (Engine* e : {&near, &whole}) {
+      ASSERT_TRUE(e->SetSurfaceEmitter(0, fe(Ceiling(dx, dy)), kLight).ok());
+      e->Update();
+    }
+    ASSERT_EQ(near.last_update_emitter_sweeps(), whole.last_update_emitter_sweeps()) << "move " << step;
+    ASSERT_EQ(Luminance(near), Luminance(whole)) << "move " << step;
+  }
+  EXPECT_EQ(solves_between, 8);
+}
+
 TEST(SurfaceEmitterIncremental, OneThreadAndTwoGiveTheSameBits) {
   std::vector<int32_t> out[2];
   for (int t = 0; t < 2; ++t) {

@@ -164,6 +164,9 @@ Status HierarchySolveQ32::Init(const Bake& bake) {
   delta_.assign(size_t{n} * 3, 0);
   mu_.assign(size_t{n} * 3, 0);
   mv_.assign(size_t{n} * 3, 0);
+  dirty_.assign(n, 0);
+  dirty_list_.assign(n, 0);
+  last_result_ = near_previous_ = nullptr;
   for (std::vector<int32_t>& v : view_) v.assign(size_t{n} * 4, 0);
   for (std::vector<int32_t>& v : moment_view_) v.assign(size_t{moments_.inner_before[n]} * 8, 0);
   return Status::Ok();
@@ -203,34 +206,6 @@ void HierarchySolveQ32::SetView(uint32_t k, const int64_t* b, int32_t* view, int
   }
 }
 
-void HierarchySolveQ32::Pull(uint32_t begin, uint32_t end, int64_t* b, int32_t* view, int32_t* moment) {
-  const BakeHierarchy& h = *h_;
-  for (uint32_t k = end; k-- > begin;) {  // children come after their parents
-    if (h.leaf(k)) continue;
-    const uint32_t first = h.node_first_child[k], last = first + h.node_child_count[k];
-    Int128 sum[3] = {0, 0, 0}, su[3] = {0, 0, 0}, sv[3] = {0, 0, 0};
-    const int32_t* ck = &centre_uv_q16_[2 * size_t{k}];
-    for (uint32_t c = first; c < last; ++c) {
-      const Int128 w = child_weight_q32_[c];
-      const int32_t* cc = &centre_uv_q16_[2 * size_t{c}];
-      const int64_t du = int64_t{cc[0]} - ck[0], dv = int64_t{cc[1]} - ck[1];  // Q16 m
-      for (int ch = 0; ch < 3; ++ch) {
-        const size_t i = 3 * size_t{c} + ch;
-        sum[ch] += w * b[i];
-        // m_parent = sum w_c (m_c + B_c (c_c - c_parent)), Q32 x m.
-        su[ch] += w * AddSat64(mu_[i], RoundShiftSat64(static_cast<Int128>(b[i]) * du, -16));
-        sv[ch] += w * AddSat64(mv_[i], RoundShiftSat64(static_cast<Int128>(b[i]) * dv, -16));
-      }
-    }
-    for (int ch = 0; ch < 3; ++ch) {
-      b[3 * size_t{k} + ch] = RoundShiftSat64(sum[ch], -32);
-      mu_[3 * size_t{k} + ch] = RoundShiftSat64(su[ch], -32);
-      mv_[3 * size_t{k} + ch] = RoundShiftSat64(sv[ch], -32);
-    }
-    SetView(k, b, view, moment);
-  }
-}
-
 void HierarchySolveQ32::ViewBlock(Sweep* sweep, int block) {
   int64_t* b = sweep->b;
   for (uint32_t r = block_run_[block]; r < block_run_[block + 1]; ++r) {
@@ -242,6 +217,7 @@ void HierarchySolveQ32::ViewBlock(Sweep* sweep, int block) {
 }
 
 void HierarchySolveQ32::AddEmitted(const int64_t* emitted_q32, int64_t* b) {
+  last_result_ = nullptr;  // its leaves changed after the solve
   const BakeHierarchy& h = *h_;
   const uint32_t n = node_count();
   int32_t* view = view_[0].data();
@@ -357,7 +333,13 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra
   const uint32_t n = node_count();
   threads_ = pool != nullptr ? pool->threads() : 1;
   Sweep sweep{this, emitted_q32, extra_irradiance_q32, b, {}, {}, {}, {}, {}, nullptr};
-  RunOnBlocks(pool, &sweep, &HierarchySolveQ32::ViewBlock);
+  if (near_previous_ != nullptr && near_previous_ == last_result_) {
+    ViewChangedLeaves(b);
+  } else {
+    RunOnBlocks(pool, &sweep, &HierarchySolveQ32::ViewBlock);
+  }
+  near_previous_ = nullptr;
+  last_result_ = b;
   for (int k = 1; k < kEmitterSolveBlocks; ++k) {
     std::memcpy(view_[k].data(), view_[0].data(), size_t{n} * 4 * sizeof(int32_t));
     std::memcpy(moment_view_[k].data(), moment_view_[0].data(), moment_view_[0].size() * sizeof(int32_t));

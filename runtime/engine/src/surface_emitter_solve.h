@@ -82,6 +82,13 @@ class HierarchySolveQ32 {
   int SolveRgb(const int64_t* emitted_q32, const int64_t* extra_irradiance_q32, int64_t* exitance_q32,
                WorkerPool* pool, int64_t peak_floor_q32 = 0, const SweepContraction* hint = nullptr,
                SweepContraction* seen = nullptr);
+  // The next SolveRgb starts from `previous`, the array the last SolveRgb
+  // solved into, with only these leaves changed (a fractional-emissivity
+  // move): its set-up then pulls only their ancestors instead of the whole
+  // hierarchy, with the same result. Ignored when `previous` is not the last
+  // result (another solve, or AddEmitted, came between). The leaves must
+  // outlive the next SolveRgb.
+  void StartNear(const int64_t* previous, const uint32_t* leaves, uint32_t count);
   // Adds emitted_q32 (per node, leaves only, the same in every channel) to
   // the leaves of exitance_q32 and pulls the inner nodes up again;
   // exitance_q24() follows. Adaptive refine solves without its emitter's
@@ -101,7 +108,9 @@ class HierarchySolveQ32 {
  private:
   struct Sweep;
   void SweepBlock(Sweep* sweep, int block);
+  void PullNode(uint32_t k, int64_t* b, int32_t* view, int32_t* moment);
   void Pull(uint32_t begin, uint32_t end, int64_t* b, int32_t* view, int32_t* moment);
+  void ViewChangedLeaves(int64_t* b);
   void SetView(uint32_t k, const int64_t* b, int32_t* view, int32_t* moment) const;
   int32_t ToView(int64_t b_q32) const;
   using BlockStep = void (HierarchySolveQ32::*)(Sweep* sweep, int block);
@@ -133,6 +142,15 @@ class HierarchySolveQ32 {
   // per node; 0 at a leaf), pulled up with the exitance.
   std::vector<int64_t> mu_, mv_;
   std::vector<int64_t> delta_;              // each leaf's change in its last sweep, Q32, 3 per node
+  // StartNear: the array the last SolveRgb solved into (null after
+  // AddEmitted), and the next solve's start; per node a mark and a list for
+  // the ancestors to pull.
+  const int64_t* last_result_ = nullptr;
+  const int64_t* near_previous_ = nullptr;
+  const uint32_t* near_leaves_ = nullptr;
+  uint32_t near_count_ = 0;
+  std::vector<uint8_t> dirty_;
+  std::vector<uint32_t> dirty_list_;
   // Per block, every node's exitance as that block's gathers read it, and
   // every inner node's moment (Q20 x m, 8 per inner node: u 0-2, 0, v 0-2, 0).
   std::vector<int32_t> view_[kEmitterSolveBlocks];

@@ -42,6 +42,7 @@ Status SurfaceEmitters::Open(const Bake& bake, int refine_links) {
   first_shot_scratch_.assign(h.node_count(), 0);
   extra_.assign(size_t{h.node_count()} * 3, 0);
   no_emission_.assign(h.node_count(), 0);
+  changed_leaves_.assign(h.node_count(), 0);
   for (Slot& s : slots_) {
     for (Solution* x : {&s.now, &s.before}) {
       x->coverage_q32.assign(h.node_count(), 0);
@@ -122,7 +123,7 @@ Status SurfaceEmitters::Remove(int slot) {
 // of two similar indirect fields (a drag: mostly the near field), against
 // the whole indirect field from the emission alone. A new light (placed
 // where nothing was, or after a remove) starts from its emission.
-void SurfaceEmitters::StartFrom(const Slot& s, int64_t* b, bool* warm) const {
+void SurfaceEmitters::StartFrom(const Slot& s, int64_t* b, bool* warm) {
   const BakeHierarchy& h = *bake_->hierarchy;
   const uint32_t n = h.node_count();
   const int64_t* now = s.now.coverage_q32.data();
@@ -146,6 +147,10 @@ void SurfaceEmitters::StartFrom(const Slot& s, int64_t* b, bool* warm) const {
         const int64_t emitted = s.now.refined ? 0 : now[k];
         b[i] = h.leaf(k) ? AddSat64(s.before.exitance_q32[i], emitted - before[k]) : s.before.exitance_q32[i];
       }
+    // FE: the leaves whose emission changed, for the solver's StartNear.
+    changed_count_ = 0;
+    for (uint32_t k = 0; k < n && !s.now.refined; ++k)
+      if (h.leaf(k) && now[k] != before[k]) changed_leaves_[changed_count_++] = k;
     return;
   }
   for (uint32_t k = 0; k < n; ++k)  // the solver pulls the inner nodes up
@@ -185,6 +190,7 @@ int SurfaceEmitters::SolvePending(WorkerPool* pool) {
                                        int64_t{1} << kCoverageFracBits, hint, seen);
       solver_.AddEmitted(s.now.coverage_q32.data(), s.now.exitance_q32.data());
     } else {
+      if (warm) solver_.StartNear(s.before.exitance_q32.data(), changed_leaves_.data(), changed_count_);
       last_sweeps_ += solver_.SolveRgb(s.now.coverage_q32.data(), nullptr, s.now.exitance_q32.data(), pool, 0,
                                        hint, seen);
     }

@@ -96,7 +96,7 @@ class SurfaceEmitters {
     bool drag_refined = false;
   };
   Status CheckSlot(int slot) const;
-  void StartFrom(const Slot& s, int64_t* exitance_q32, bool* warm) const;
+  void StartFrom(const Slot& s, int64_t* exitance_q32, bool* warm);
 
   const Bake* bake_ = nullptr;
   bool supported_ = false;
@@ -108,6 +108,9 @@ class SurfaceEmitters {
   // first_shot_scratch_ per node; extra_ 3 per node (the first shot in every
   // channel, as the solver takes it); no_emission_ per node, all 0.
   std::vector<int64_t> coverage_scratch_, first_shot_scratch_, extra_, no_emission_;
+  // A warm FE start's leaves whose emission changed (StartFrom), per node.
+  std::vector<uint32_t> changed_leaves_;
+  uint32_t changed_count_ = 0;
   Slot slots_[kMaxSurfaceEmitters];
   int last_sweeps_ = 0, last_warm_ = 0;
   EmitterSolveObserver* observer_ = nullptr;
