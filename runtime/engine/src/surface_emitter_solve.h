@@ -12,7 +12,7 @@
 // Incremental (issue 15): a solve starts from the exitance it is given (the
 // slot's previous solution when an emitter moves), so a change only costs the
 // sweeps its difference needs. Gathers are int64 (exitance read as int32 Q24,
-// bounded at Init). The surfaces are split into kEmitterSolveBlocks fixed
+// bounded at Init). The surfaces are dealt into kEmitterSolveBlocks fixed
 // blocks that sweep in parallel (block Gauss-Seidel: a block sees the others'
 // exitance as it was at the start of the sweep), so the result is the same
 // whatever the thread count.
@@ -118,6 +118,7 @@ class HierarchySolveQ32 {
   // A block's inner nodes pulled up from its leaves, and its view (view_[0]).
   void ViewBlock(Sweep* sweep, int block);
   void ExtrapolateBlock(Sweep* sweep, int block);
+  void AssignBlocks();
   int32_t ToMomentView(int64_t m_q32) const;
   void AddMoments(const EmitterMomentEntry* e, uint32_t count, const int32_t* moment, int64_t a[3]) const;
 
@@ -133,7 +134,7 @@ class HierarchySolveQ32 {
   std::vector<int32_t> centre_uv_q16_;      // 2 per node, surface frame, m
   std::vector<uint64_t> rho_q32_;           // 3 per node (leaves), 2^32 = 1
   std::vector<uint32_t> run_begin_;         // first node of each tree, then node_count
-  uint32_t block_run_[kEmitterSolveBlocks + 1] = {};  // runs of each block
+  std::vector<uint32_t> block_runs_[kEmitterSolveBlocks];  // runs of each block, ascending (AssignBlocks)
   bool vector_ = false;                     // the AVX2 gathers (Init)
   int threads_ = 1;                         // of the current SolveRgb
   int32_t view_limit_ = 0;                  // |exitance| read by a gather, Q24 (Init)

@@ -194,14 +194,38 @@ int SurfaceEmitters::SolvePending(WorkerPool* pool) {
       last_sweeps_ += solver_.SolveRgb(s.now.coverage_q32.data(), nullptr, s.now.exitance_q32.data(), pool, 0,
                                        hint, seen);
     }
-    if (observer_ != nullptr) observer_->OnSolved(slot, s.now.exitance_q32.data());
-    // Unit luminance L = 1 cd/m^2 emits M = pi L; the vertex luminance is
-    // exitance / pi, so the pi cancels: the unit-coverage solve is the answer.
-    LeavesToVerticesQ24(vertex_weights_, vertex_count_, solver_.exitance_q24(), s.now.unit_q24.data());
+    SpreadSolution(slot, pool);
     s.now.solved = true;
     ++solved;
   }
   return solved;
+}
+
+// A slot's new solution to the grids (the observer) and to the vertices: two
+// independent reads of it, one on each thread when there are two.
+void SurfaceEmitters::SpreadSolution(int slot, WorkerPool* pool) {
+  struct Spread {
+    SurfaceEmitters* self;
+    int slot;
+    int threads;
+  } spread{this, slot, pool != nullptr ? pool->threads() : 1};
+  const auto task = [](void* context, int thread) {
+    const Spread* sp = static_cast<const Spread*>(context);
+    SurfaceEmitters* self = sp->self;
+    Slot& s = self->slots_[sp->slot];
+    if (thread == 0 && self->observer_ != nullptr) self->observer_->OnSolved(sp->slot, s.now.exitance_q32.data());
+    if (thread == (sp->threads > 1 ? 1 : 0)) {
+      // Unit luminance L = 1 cd/m^2 emits M = pi L; the vertex luminance is
+      // exitance / pi, so the pi cancels: the unit-coverage solve is the answer.
+      LeavesToVerticesQ24(self->vertex_weights_, self->vertex_count_, self->solver_.exitance_q24(),
+                          s.now.unit_q24.data());
+    }
+  };
+  if (spread.threads > 1) {
+    pool->Run(task, &spread);
+  } else {
+    task(&spread, 0);
+  }
 }
 
 void SurfaceEmitters::AddTo(int32_t* vertex_q12) const {

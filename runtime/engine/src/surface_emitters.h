@@ -96,6 +96,7 @@ class SurfaceEmitters {
     bool drag_refined = false;
   };
   Status CheckSlot(int slot) const;
+  void SpreadSolution(int slot, WorkerPool* pool);
   void StartFrom(const Slot& s, int64_t* exitance_q32, bool* warm);
 
   const Bake* bake_ = nullptr;
