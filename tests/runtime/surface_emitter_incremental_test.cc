@@ -13,6 +13,8 @@
 
 #include "relight/baker/baker.h"
 #include "relight/engine/engine.h"
+#include "surface_emitter_coverage.h"
+#include "surface_emitter_solve.h"
 #include "surface_emitter_test_support.h"
 #include "test_scenes.h"
 
@@ -178,20 +180,23 @@ TEST(SurfaceEmitterIncremental, ADragStopsAfterOneSweepWhereTheLastMoveSaysItMay
 // still holds the slot's last solution (HierarchySolveQ32::StartNear), and
 // gives the same bits as the whole pull it replaces: a second engine, whose
 // other slot (at zero luminance) solves between the moves so that every move
-// takes the whole pull, shows the same vertices after every move of a drag.
-TEST(SurfaceEmitterIncremental, AMoveSetUpFromTheChangedLeavesGivesTheWholePullsBits) {
+// takes the whole pull, shows the same vertices after every move of a drag,
+// with either method (adaptive refine's solution keeps its emitter added by
+// AddEmitted's own partial pull, which the second engine's other slot
+// exercises too).
+void ExpectNearSetUpGivesTheWholePullsBits(SurfaceEmitterMethod method) {
   Engine near, whole;
   ASSERT_TRUE(near.Open(Bake(BoxBake())).ok());
   ASSERT_TRUE(whole.Open(Bake(BoxBake())).ok());
   const LightQ12 off[3] = {LightQ12::FromRaw(0), LightQ12::FromRaw(0), LightQ12::FromRaw(0)};
-  for (Engine* e : {&near, &whole}) {
-    ASSERT_TRUE(e->SetSurfaceEmitter(0, Ceiling(0, 0), kLight).ok());
-    e->Update();
-  }
-  const auto fe = [](SurfaceEmitterShape shape) {  // StartNear is fractional emissivity's
-    shape.method = SurfaceEmitterMethod::kFractionalEmissivity;
+  const auto with_method = [method](SurfaceEmitterShape shape) {
+    shape.method = method;
     return shape;
   };
+  for (Engine* e : {&near, &whole}) {
+    ASSERT_TRUE(e->SetSurfaceEmitter(0, with_method(Ceiling(0, 0)), kLight).ok());
+    e->Update();
+  }
   int solves_between = 0;
   for (int step = 1; step <= 8; ++step) {
     const double dx = 0.01 * ((step / 2) % 2) + 0.003 * step, dy = 0.01 * (((step + 1) / 2) % 2);
@@ -202,13 +207,57 @@ TEST(SurfaceEmitterIncremental, AMoveSetUpFromTheChangedLeavesGivesTheWholePulls
     whole.Update();
     solves_between += whole.last_update_emitters_solved();
     for (Engine* e : {&near, &whole}) {
-      ASSERT_TRUE(e->SetSurfaceEmitter(0, fe(Ceiling(dx, dy)), kLight).ok());
+      ASSERT_TRUE(e->SetSurfaceEmitter(0, with_method(Ceiling(dx, dy)), kLight).ok());
       e->Update();
     }
     ASSERT_EQ(near.last_update_emitter_sweeps(), whole.last_update_emitter_sweeps()) << "move " << step;
     ASSERT_EQ(Luminance(near), Luminance(whole)) << "move " << step;
   }
   EXPECT_EQ(solves_between, 8);
+}
+
+TEST(SurfaceEmitterIncremental, AMoveSetUpFromTheChangedLeavesGivesTheWholePullsBits) {
+  ExpectNearSetUpGivesTheWholePullsBits(SurfaceEmitterMethod::kFractionalEmissivity);
+}
+
+TEST(SurfaceEmitterIncremental, AnAdaptiveRefineMoveSetUpFromTheChangedLeavesGivesTheWholePullsBits) {
+  ExpectNearSetUpGivesTheWholePullsBits(SurfaceEmitterMethod::kAdaptiveRefine);
+}
+
+// Adaptive refine adds its emitter to the solution after the solve
+// (HierarchySolveQ32::AddEmitted). On the solver's last result that pulls
+// only the emitting leaves' ancestors; on any other array, the whole
+// hierarchy. Both must give the same exitance and the same view.
+TEST(SurfaceEmitterIncremental, AddingTheEmitterToTheLastResultPullsOnlyItsAncestorsWithTheWholePullsBits) {
+  const Bake& bake = BoxBake();
+  const BakeHierarchy& h = *bake.hierarchy;
+  const uint32_t n = h.node_count();
+  HierarchySolveQ32 solver;
+  ASSERT_TRUE(solver.Init(bake).ok());
+  const SurfaceEmitterShape shape = Ceiling(0.02, 0.01);
+  std::vector<int64_t> coverage(n, 0);
+  ASSERT_TRUE(SurfaceEmitterCoverageQ32(h, bake.mesh, SurfaceRoot(bake, "ceiling"), shape.corners_q16,
+                                        shape.corner_count, coverage.data())
+                  .ok());
+  std::vector<int64_t> solved(3 * size_t{n}, 0);
+  solver.SolveRgb(coverage.data(), nullptr, solved.data(), nullptr);
+  const std::vector<int64_t> before = solved;
+  std::vector<int64_t> copy = solved;
+  solver.AddEmitted(coverage.data(), solved.data());  // the last result: ancestors only
+  const std::vector<int32_t> near_view(solver.exitance_q24(), solver.exitance_q24() + 4 * size_t{n});
+  solver.AddEmitted(coverage.data(), copy.data());  // another array: the whole pull
+  const std::vector<int32_t> whole_view(solver.exitance_q24(), solver.exitance_q24() + 4 * size_t{n});
+  EXPECT_EQ(solved, copy);
+  EXPECT_EQ(near_view, whole_view);
+  // Not vacuous: the emitter changed leaves and, through the pull, the roots.
+  int changed_leaves = 0, changed_roots = 0;
+  for (uint32_t k = 0; k < n; ++k) {
+    const bool changed = solved[3 * size_t{k}] != before[3 * size_t{k}];
+    changed_leaves += h.leaf(k) && changed ? 1 : 0;
+    changed_roots += h.node_parent[k] == kBakeNoIndex && changed ? 1 : 0;
+  }
+  EXPECT_GT(changed_leaves, 0);
+  EXPECT_EQ(changed_roots, 1);  // the ceiling's
 }
 
 TEST(SurfaceEmitterIncremental, OneThreadAndTwoGiveTheSameBits) {

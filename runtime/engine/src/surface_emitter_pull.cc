@@ -48,26 +48,37 @@ void HierarchySolveQ32::StartNear(const int64_t* previous, const uint32_t* leave
   near_count_ = count;
 }
 
-// The set-up of a solve that starts from the last one's result with a few
-// leaves changed (StartNear): those leaves' view, then their ancestors pulled,
-// deepest first -- the same values a whole pull gives, since every other
-// node still holds what the last solve's own pull left.
-void HierarchySolveQ32::ViewChangedLeaves(int64_t* b) {
+// Marks node k's ancestors for PullMarked, listing each once.
+void HierarchySolveQ32::MarkAncestors(uint32_t k, uint32_t* dirty) {
   const BakeHierarchy& h = *h_;
-  uint32_t dirty = 0;
-  for (uint32_t i = 0; i < near_count_; ++i) {
-    const uint32_t k = near_leaves_[i];
-    SetView(k, b, view_[0].data(), moment_view_[0].data());
-    for (uint32_t p = h.node_parent[k]; p != kBakeNoIndex && dirty_[p] == 0; p = h.node_parent[p]) {
-      dirty_[p] = 1;
-      dirty_list_[dirty++] = p;
-    }
+  for (uint32_t p = h.node_parent[k]; p != kBakeNoIndex && dirty_[p] == 0; p = h.node_parent[p]) {
+    dirty_[p] = 1;
+    dirty_list_[(*dirty)++] = p;
   }
+}
+
+// The marked nodes pulled deepest first (children come after their
+// parents), their marks cleared.
+void HierarchySolveQ32::PullMarked(uint32_t dirty, int64_t* b) {
   std::sort(dirty_list_.begin(), dirty_list_.begin() + dirty, std::greater<uint32_t>());  // in place
   for (uint32_t i = 0; i < dirty; ++i) {
     PullNode(dirty_list_[i], b, view_[0].data(), moment_view_[0].data());
     dirty_[dirty_list_[i]] = 0;
   }
+}
+
+// The set-up of a solve that starts from the last one's result with a few
+// leaves changed (StartNear): those leaves' view, then their ancestors pulled,
+// deepest first -- the same values a whole pull gives, since every other
+// node still holds what the last solve's own pull left.
+void HierarchySolveQ32::ViewChangedLeaves(int64_t* b) {
+  uint32_t dirty = 0;
+  for (uint32_t i = 0; i < near_count_; ++i) {
+    const uint32_t k = near_leaves_[i];
+    SetView(k, b, view_[0].data(), moment_view_[0].data());
+    MarkAncestors(k, &dirty);
+  }
+  PullMarked(dirty, b);
 }
 
 }  // namespace relight

@@ -209,18 +209,28 @@ void HierarchySolveQ32::ViewBlock(Sweep* sweep, int block) {
 }
 
 void HierarchySolveQ32::AddEmitted(const int64_t* emitted_q32, int64_t* b) {
-  last_result_ = nullptr;  // its leaves changed after the solve
   const BakeHierarchy& h = *h_;
   const uint32_t n = node_count();
   int32_t* view = view_[0].data();
+  // On the last solve's result every inner node holds the pull of its
+  // leaves, so only the emitting leaves' ancestors need pulling: the same
+  // bits as the whole pull, which any other array takes.
+  const bool sparse = b == last_result_ && near_previous_ == nullptr;
+  uint32_t dirty = 0;
   for (uint32_t k = 0; k < n; ++k) {
-    if (!h.leaf(k)) continue;
+    if (!h.leaf(k) || (sparse && emitted_q32[k] == 0)) continue;
     for (int ch = 0; ch < 3; ++ch) {
       const size_t i = 3 * size_t{k} + ch;
       b[i] = AddSat64(b[i], emitted_q32[k]);
       view[4 * size_t{k} + ch] = ToView(b[i]);
     }
+    if (sparse) MarkAncestors(k, &dirty);
   }
+  if (sparse) {
+    PullMarked(dirty, b);
+    return;  // b is still the last result, now with its emitter
+  }
+  last_result_ = nullptr;
   for (size_t r = 0; r + 1 < run_begin_.size(); ++r)
     Pull(run_begin_[r], run_begin_[r + 1], b, view, moment_view_[0].data());
 }

@@ -86,13 +86,15 @@ class HierarchySolveQ32 {
   // solved into, with only these leaves changed (a fractional-emissivity
   // move): its set-up then pulls only their ancestors instead of the whole
   // hierarchy, with the same result. Ignored when `previous` is not the last
-  // result (another solve, or AddEmitted, came between). The leaves must
-  // outlive the next SolveRgb.
+  // result (another solve, or AddEmitted on another array, came between).
+  // The leaves must outlive the next SolveRgb.
   void StartNear(const int64_t* previous, const uint32_t* leaves, uint32_t count);
   // Adds emitted_q32 (per node, leaves only, the same in every channel) to
   // the leaves of exitance_q32 and pulls the inner nodes up again;
   // exitance_q24() follows. Adaptive refine solves without its emitter's
-  // own exitance (its first shot stands for it) and adds it after.
+  // own exitance (its first shot stands for it) and adds it after. On the
+  // array the last SolveRgb solved into, only the emitting leaves'
+  // ancestors are pulled, and a StartNear from it still applies.
   void AddEmitted(const int64_t* emitted_q32, int64_t* exitance_q32);
   // exitance_q32 = rho x irradiance_q32 (3 per node) on the leaves, 0 on the
   // inner nodes (SolveRgb pulls them up): a new light's first bounce when
@@ -111,6 +113,8 @@ class HierarchySolveQ32 {
   void PullNode(uint32_t k, int64_t* b, int32_t* view, int32_t* moment);
   void Pull(uint32_t begin, uint32_t end, int64_t* b, int32_t* view, int32_t* moment);
   void ViewChangedLeaves(int64_t* b);
+  void MarkAncestors(uint32_t k, uint32_t* dirty);
+  void PullMarked(uint32_t dirty, int64_t* b);
   void SetView(uint32_t k, const int64_t* b, int32_t* view, int32_t* moment) const;
   int32_t ToView(int64_t b_q32) const;
   using BlockStep = void (HierarchySolveQ32::*)(Sweep* sweep, int block);
@@ -143,7 +147,7 @@ class HierarchySolveQ32 {
   // per node; 0 at a leaf), pulled up with the exitance.
   std::vector<int64_t> mu_, mv_;
   std::vector<int64_t> delta_;              // each leaf's change in its last sweep, Q32, 3 per node
-  // StartNear: the array the last SolveRgb solved into (null after
+  // StartNear: the array the last SolveRgb solved into (null after a whole
   // AddEmitted), and the next solve's start; per node a mark and a list for
   // the ancestors to pull.
   const int64_t* last_result_ = nullptr;

@@ -147,10 +147,11 @@ void SurfaceEmitters::StartFrom(const Slot& s, int64_t* b, bool* warm) {
         const int64_t emitted = s.now.refined ? 0 : now[k];
         b[i] = h.leaf(k) ? AddSat64(s.before.exitance_q32[i], emitted - before[k]) : s.before.exitance_q32[i];
       }
-    // FE: the leaves whose emission changed, for the solver's StartNear.
+    // The leaves whose start differs from the previous solution, for the
+    // solver's StartNear.
     changed_count_ = 0;
-    for (uint32_t k = 0; k < n && !s.now.refined; ++k)
-      if (h.leaf(k) && now[k] != before[k]) changed_leaves_[changed_count_++] = k;
+    for (uint32_t k = 0; k < n; ++k)
+      if (h.leaf(k) && (s.now.refined ? 0 : now[k]) != before[k]) changed_leaves_[changed_count_++] = k;
     return;
   }
   for (uint32_t k = 0; k < n; ++k)  // the solver pulls the inner nodes up
@@ -185,7 +186,11 @@ int SurfaceEmitters::SolvePending(WorkerPool* pool) {
       // exitance, and the emitter's exitance is added after.
       for (uint32_t k = 0; k < n; ++k)
         for (int c = 0; c < 3; ++c) extra_[3 * size_t{k} + c] = s.now.first_shot_q32[k];
-      if (!warm) solver_.ReflectedStart(extra_.data(), s.now.exitance_q32.data());
+      if (warm) {
+        solver_.StartNear(s.before.exitance_q32.data(), changed_leaves_.data(), changed_count_);
+      } else {
+        solver_.ReflectedStart(extra_.data(), s.now.exitance_q32.data());
+      }
       last_sweeps_ += solver_.SolveRgb(no_emission_.data(), extra_.data(), s.now.exitance_q32.data(), pool,
                                        int64_t{1} << kCoverageFracBits, hint, seen);
       solver_.AddEmitted(s.now.coverage_q32.data(), s.now.exitance_q32.data());
