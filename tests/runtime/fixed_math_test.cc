@@ -1,6 +1,7 @@
 // Integer elementary functions (runtime/base/src/fixed_math.cc) against exact
 // integer checks and long-double references, with tolerances in LSB.
 #include "relight/base/fixed_math.h"
+#include "relight/base/fixed_ops.h"
 
 #include <gtest/gtest.h>
 
@@ -33,6 +34,35 @@ void ExpectFloorSqrt128(u128 v) {
   const u128 r2 = static_cast<u128>(r) * r;
   ASSERT_LE(r2, v);
   ASSERT_LE(v - r2, 2 * static_cast<u128>(r));
+}
+
+// The saturating helpers (fixed_ops.h) against the plain wide arithmetic
+// they replace: the exact sum, difference or value, clamped to int64.
+int64_t Clamp64(Int128 v) {
+  const Int128 lo = std::numeric_limits<int64_t>::min(), hi = std::numeric_limits<int64_t>::max();
+  return static_cast<int64_t>(v < lo ? lo : (v > hi ? hi : v));
+}
+
+TEST(Saturate, AddSubAndNarrowMatchTheClampedWideValues) {
+  constexpr int64_t kMin = std::numeric_limits<int64_t>::min(), kMax = std::numeric_limits<int64_t>::max();
+  std::vector<int64_t> values = {kMin, kMin + 1, kMin / 2, -(int64_t{1} << 32), -2, -1, 0, 1, 2,
+                                 int64_t{1} << 32, kMax / 2, kMax - 1, kMax};
+  std::mt19937_64 rng(7);
+  for (int i = 0; i < 200; ++i) values.push_back(static_cast<int64_t>(rng()) >> (rng() % 64));
+  int saturated = 0;
+  for (int64_t a : values) {
+    for (int64_t b : values) {
+      const Int128 sum = static_cast<Int128>(a) + b, diff = static_cast<Int128>(a) - b;
+      ASSERT_EQ(AddSat64(a, b), Clamp64(sum)) << a << " + " << b;
+      ASSERT_EQ(SubSat64(a, b), Clamp64(diff)) << a << " - " << b;
+      // Wide values on both sides of the int64 range, up to +-2^126.
+      const Int128 wide = static_cast<Int128>(a) * (b >> 1);
+      ASSERT_EQ(SaturateI64(wide), Clamp64(wide)) << a << " x " << (b >> 1);
+      ASSERT_EQ(SaturateI64(sum), Clamp64(sum));
+      saturated += Clamp64(sum) != sum ? 1 : 0;
+    }
+  }
+  EXPECT_GT(saturated, 100);  // the edges were reached
 }
 
 TEST(ISqrt, ExactFloorOnEdgeCases) {

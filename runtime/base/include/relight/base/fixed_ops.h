@@ -31,10 +31,14 @@ constexpr Int128 RoundShift(Int128 v, int shift) {
 // a / b rounded to nearest (ties away from zero); b > 0.
 constexpr Int128 DivRound(Int128 a, Int128 b) { return a >= 0 ? (a + b / 2) / b : -((-a + b / 2) / b); }
 
+// v fits int64 when its high half is the sign extension of its low half:
+// one compare instead of two 128-bit ones (the emitter solve's leaf update
+// and pull spent a fifth of their time in this and AddSat64).
 constexpr int64_t SaturateI64(Int128 v) {
-  if (v > std::numeric_limits<int64_t>::max()) return std::numeric_limits<int64_t>::max();
-  if (v < std::numeric_limits<int64_t>::min()) return std::numeric_limits<int64_t>::min();
-  return static_cast<int64_t>(v);
+  const int64_t lo = static_cast<int64_t>(v);        // modulo 2^64 (GCC, Clang)
+  const int64_t hi = static_cast<int64_t>(v >> 64);  // arithmetic shift
+  if (hi == (lo >> 63)) return lo;
+  return hi < 0 ? std::numeric_limits<int64_t>::min() : std::numeric_limits<int64_t>::max();
 }
 
 constexpr int32_t SaturateI32(Int128 v) {
@@ -43,9 +47,18 @@ constexpr int32_t SaturateI32(Int128 v) {
   return static_cast<int32_t>(v);
 }
 
-// a + b and a - b saturated to int64 (no signed overflow whatever the inputs).
-constexpr int64_t AddSat64(int64_t a, int64_t b) { return SaturateI64(static_cast<Int128>(a) + b); }
-constexpr int64_t SubSat64(int64_t a, int64_t b) { return SaturateI64(static_cast<Int128>(a) - b); }
+// a + b and a - b saturated to int64 (no signed overflow whatever the
+// inputs). They overflow only towards b's sign (a - b: away from it).
+constexpr int64_t AddSat64(int64_t a, int64_t b) {
+  int64_t r = 0;
+  if (__builtin_add_overflow(a, b, &r)) return b > 0 ? std::numeric_limits<int64_t>::max() : std::numeric_limits<int64_t>::min();
+  return r;
+}
+constexpr int64_t SubSat64(int64_t a, int64_t b) {
+  int64_t r = 0;
+  if (__builtin_sub_overflow(a, b, &r)) return b < 0 ? std::numeric_limits<int64_t>::max() : std::numeric_limits<int64_t>::min();
+  return r;
+}
 
 // v * 2^s, rounded to nearest (halves up), saturated to int64. Valid for
 // |v| < 2^126 (every caller's products are far below that).
