@@ -8,12 +8,16 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
+#include "relight/base/fixed_ops.h"
 #include "relight/baker/baker.h"
 #include "relight/engine/engine.h"
 #include "surface_emitter_coverage.h"
+#include "surface_emitter_extrapolate.h"
 #include "surface_emitter_solve.h"
 #include "surface_emitter_test_support.h"
 #include "test_scenes.h"
@@ -258,6 +262,43 @@ TEST(SurfaceEmitterIncremental, AddingTheEmitterToTheLastResultPullsOnlyItsAnces
   }
   EXPECT_GT(changed_leaves, 0);
   EXPECT_EQ(changed_roots, 1);  // the ceiling's
+}
+
+// The extrapolation adds each leaf's change x num / den, rounded half away
+// from zero and saturated; small changes take an int64 route, so check every
+// size against the 128-bit formula, at the routes' edge (2^31) and the
+// extremes, for ratios of every size ExtrapolationRatios gives.
+TEST(SurfaceEmitterIncremental, ExtrapolationAddsEachLeafsRoundedShareOfItsChange) {
+  std::mt19937_64 rng(11);
+  const int64_t kMax = std::numeric_limits<int64_t>::max(), kMin = std::numeric_limits<int64_t>::min();
+  const int64_t edges[] = {0, 1, -1, 2, -3, (int64_t{1} << 31) - 1, -(int64_t{1} << 31) + 1, int64_t{1} << 31,
+                           -(int64_t{1} << 31), int64_t{1} << 33, -(int64_t{1} << 33) + 5, kMax, kMin};
+  const Int128 sums[][2] = {{999, 1000}, {5, 100}, {Int128{1} << 40, (Int128{1} << 40) * 3}, {Int128{1} << 90, Int128{1} << 92},
+                            {7, 8}, {INT32_MAX, Int128{INT32_MAX} * 2}, {1900000000, INT32_MAX}};
+  int rounded_away = 0;
+  for (const auto& sum : sums) {
+    const Int128 l1[3] = {sum[0], sum[0], sum[0]}, before[3] = {sum[1], sum[1], sum[1]};
+    Int128 num[3], den[3];
+    ExtrapolationRatios(l1, before, num, den);
+    ASSERT_NE(num[0], 0);
+    for (int trial = 0; trial < 400; ++trial) {
+      constexpr uint32_t kNodes = 8;
+      const uint8_t child_count[kNodes] = {4, 0, 0, 0, 0, 2, 0, 0};  // nodes 0 and 5 inner
+      int64_t delta[3 * kNodes], b[3 * kNodes], want[3 * kNodes];
+      for (uint32_t i = 0; i < 3 * kNodes; ++i) {
+        delta[i] = trial < 13 ? edges[(trial + i) % 13] : static_cast<int64_t>(rng()) >> (rng() % 64);
+        b[i] = static_cast<int64_t>(rng()) >> (rng() % 64);
+        const uint32_t k = i / 3;
+        const Int128 exact = static_cast<Int128>(delta[i]) * num[i % 3];
+        const Int128 q = DivRound(exact, den[i % 3]);
+        rounded_away += q * den[i % 3] != exact ? 1 : 0;
+        want[i] = child_count[k] != 0 ? b[i] : AddSat64(b[i], SaturateI64(q));
+      }
+      ExtrapolateLeaves(kNodes, child_count, delta, num, den, b);
+      for (uint32_t i = 0; i < 3 * kNodes; ++i) ASSERT_EQ(b[i], want[i]) << "element " << i << ", change " << delta[i];
+    }
+  }
+  EXPECT_GT(rounded_away, 1000);
 }
 
 TEST(SurfaceEmitterIncremental, OneThreadAndTwoGiveTheSameBits) {

@@ -39,6 +39,15 @@ int64_t GradientTerm(int64_t gu, int64_t gv, const int32_t* uv_q16) {
                          -16);
 }
 
+// v / 2^shift rounded (halves up), clamped to +-limit (< 2^31): what
+// RoundShiftSat64 and the clamp give, in int64 (a v within 2^(shift - 1) of
+// INT64_MAX would overflow the add, and clamps to limit either way).
+inline int32_t ClampedView(int64_t v, int shift, int32_t limit) {
+  const int64_t half = int64_t{1} << (shift - 1);
+  const int64_t r = v > INT64_MAX - half ? INT64_MAX : (v + half) >> shift;
+  return static_cast<int32_t>(r > limit ? limit : (r < -limit ? -limit : r));
+}
+
 constexpr int kViewShift = kExitanceFracBits - kGatherFracBits;
 // The moment view, Q20 x metres: 16 m of headroom over the exitance view.
 constexpr int kMomentViewShift = kViewShift + 4;
@@ -164,10 +173,7 @@ Status HierarchySolveQ32::Init(const Bake& bake) {
   return Status::Ok();
 }
 
-int32_t HierarchySolveQ32::ToView(int64_t b_q32) const {
-  const int64_t v = RoundShiftSat64(b_q32, -kViewShift);
-  return static_cast<int32_t>(v > view_limit_ ? view_limit_ : (v < -view_limit_ ? -view_limit_ : v));
-}
+int32_t HierarchySolveQ32::ToView(int64_t b_q32) const { return ClampedView(b_q32, kViewShift, view_limit_); }
 
 void HierarchySolveQ32::AddMoments(const EmitterMomentEntry* e, uint32_t count, const int32_t* moment,
                                    int64_t a[3]) const {
@@ -184,8 +190,7 @@ void HierarchySolveQ32::AddMoments(const EmitterMomentEntry* e, uint32_t count, 
 }
 
 int32_t HierarchySolveQ32::ToMomentView(int64_t m_q32) const {
-  const int64_t v = RoundShiftSat64(m_q32, -kMomentViewShift);
-  return static_cast<int32_t>(v > view_limit_ ? view_limit_ : (v < -view_limit_ ? -view_limit_ : v));
+  return ClampedView(m_q32, kMomentViewShift, view_limit_);
 }
 
 void HierarchySolveQ32::SetView(uint32_t k, const int64_t* b, int32_t* view, int32_t* moment) const {

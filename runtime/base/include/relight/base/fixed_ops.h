@@ -30,6 +30,8 @@ constexpr Int128 RoundShift(Int128 v, int shift) {
 
 // a / b rounded to nearest (ties away from zero); b > 0.
 constexpr Int128 DivRound(Int128 a, Int128 b) { return a >= 0 ? (a + b / 2) / b : -((-a + b / 2) / b); }
+// The same in int64, for |a| + b / 2 < 2^63.
+constexpr int64_t DivRound64(int64_t a, int64_t b) { return a >= 0 ? (a + b / 2) / b : -((-a + b / 2) / b); }
 
 // v fits int64 when its high half is the sign extension of its low half:
 // one compare instead of two 128-bit ones (the emitter solve's leaf update
