@@ -10,6 +10,19 @@
 #include "surface_emitter_solve.h"
 
 namespace relight {
+namespace {
+
+// RoundShiftSat64(b x d, -16), in int64 where the product fits (every node
+// of a real bake: exitance below 2^47 Q32 times a centre offset below 2^16
+// Q16 metres), else in 128 bits: the same value either way.
+inline int64_t OffsetMomentQ32(int64_t b, int64_t d_q16) {
+  constexpr int64_t kHalf = int64_t{1} << 15;
+  int64_t p = 0;
+  if (!__builtin_mul_overflow(b, d_q16, &p) && p <= INT64_MAX - kHalf) return (p + kHalf) >> 16;
+  return RoundShiftSat64(static_cast<Int128>(b) * d_q16, -16);
+}
+
+}  // namespace
 
 void HierarchySolveQ32::PullNode(uint32_t k, int64_t* b, int32_t* view, int32_t* moment) {
   const BakeHierarchy& h = *h_;
@@ -17,15 +30,17 @@ void HierarchySolveQ32::PullNode(uint32_t k, int64_t* b, int32_t* view, int32_t*
   Int128 sum[3] = {0, 0, 0}, su[3] = {0, 0, 0}, sv[3] = {0, 0, 0};
   const int32_t* ck = &centre_uv_q16_[2 * size_t{k}];
   for (uint32_t c = first; c < last; ++c) {
-    const Int128 w = child_weight_q32_[c];
+    // At most 2^32 (the bake's check makes a parent's area the sum of its
+    // children's): as int64, so each product is one signed 64 x 64 multiply.
+    const Int128 w = static_cast<int64_t>(child_weight_q32_[c]);
     const int32_t* cc = &centre_uv_q16_[2 * size_t{c}];
     const int64_t du = int64_t{cc[0]} - ck[0], dv = int64_t{cc[1]} - ck[1];  // Q16 m
     for (int ch = 0; ch < 3; ++ch) {
       const size_t i = 3 * size_t{c} + ch;
       sum[ch] += w * b[i];
       // m_parent = sum w_c (m_c + B_c (c_c - c_parent)), Q32 x m.
-      su[ch] += w * AddSat64(mu_[i], RoundShiftSat64(static_cast<Int128>(b[i]) * du, -16));
-      sv[ch] += w * AddSat64(mv_[i], RoundShiftSat64(static_cast<Int128>(b[i]) * dv, -16));
+      su[ch] += w * AddSat64(mu_[i], OffsetMomentQ32(b[i], du));
+      sv[ch] += w * AddSat64(mv_[i], OffsetMomentQ32(b[i], dv));
     }
   }
   for (int ch = 0; ch < 3; ++ch) {
