@@ -273,8 +273,9 @@ TEST(SurfaceEmitterIncremental, ExtrapolationAddsEachLeafsRoundedShareOfItsChang
   const int64_t kMax = std::numeric_limits<int64_t>::max(), kMin = std::numeric_limits<int64_t>::min();
   const int64_t edges[] = {0, 1, -1, 2, -3, (int64_t{1} << 31) - 1, -(int64_t{1} << 31) + 1, int64_t{1} << 31,
                            -(int64_t{1} << 31), int64_t{1} << 33, -(int64_t{1} << 33) + 5, kMax, kMin};
-  const Int128 sums[][2] = {{999, 1000}, {5, 100}, {Int128{1} << 40, (Int128{1} << 40) * 3}, {Int128{1} << 90, Int128{1} << 92},
-                            {7, 8}, {INT32_MAX, Int128{INT32_MAX} * 2}, {1900000000, INT32_MAX}};
+  const Int128 sums[][2] = {{999, 1000}, {5, 100}, {Int128{1} << 40, (Int128{1} << 40) * 3},
+                            {Int128{1} << 90, Int128{1} << 92}, {7, 8}, {INT32_MAX, Int128{INT32_MAX} * 2},
+                            {1900000000, INT32_MAX}};
   int rounded_away = 0;
   for (const auto& sum : sums) {
     const Int128 l1[3] = {sum[0], sum[0], sum[0]}, before[3] = {sum[1], sum[1], sum[1]};

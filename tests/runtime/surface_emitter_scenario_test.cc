@@ -94,8 +94,8 @@ TEST(SurfaceEmitterScenario, WindowsAppearAndOneGoesOffAgainstTheNaiveSolve) {
       worst_max = std::max(worst_max, max_e / peak);
       worst_mean = std::max(worst_mean, sum_e / static_cast<double>(want.rows()) / peak);
     }
-    std::printf("[ measured ] %s: FE vs naive (dense, %zu patches), worst channel: max %.3f %%, mean %.4f %% "
-                "of peak over %lld vertices; %d solved, %d sweeps\n",
+    std::printf("[ measured ] %s: AR (the default method) vs naive (dense, %zu patches), worst channel: "
+                "max %.3f %%, mean %.4f %% of peak over %lld vertices; %d solved, %d sweeps\n",
                 steps[s].label, core->mesh.patch_count(), 100 * worst_max, 100 * worst_mean,
                 static_cast<long long>(want.rows()), engine.last_update_emitters_solved(),
                 engine.last_update_emitter_sweeps());

@@ -233,6 +233,16 @@ struct PartJob {
 
 Status SurfaceEmitterRefine::FirstShot(uint32_t root, const SurfaceEmitterShape& shape, const int64_t* coverage_q32,
                                        int64_t* leaf_irradiance_q32, WorkerPool* workers) {
+  return Shoot(root, &shape, coverage_q32, leaf_irradiance_q32, workers);
+}
+
+Status SurfaceEmitterRefine::FractionalFirstShot(uint32_t root, const int64_t* coverage_q32,
+                                                 int64_t* leaf_irradiance_q32, WorkerPool* workers) {
+  return Shoot(root, nullptr, coverage_q32, leaf_irradiance_q32, workers);
+}
+
+Status SurfaceEmitterRefine::Shoot(uint32_t root, const SurfaceEmitterShape* shape, const int64_t* coverage_q32,
+                                   int64_t* leaf_irradiance_q32, WorkerPool* workers) {
   const BakeHierarchy& h = *h_;
   const uint32_t n = h.node_count(), end = tree_end_[root];
   // How much of each node the emitter covers (area-weighted, as FE's pull).
@@ -269,17 +279,18 @@ Status SurfaceEmitterRefine::FirstShot(uint32_t root, const SurfaceEmitterShape&
     }
   }
   EmitterClip3 clip;
-  clip.Set(shape, drop_axis_[h.node_surface[root]]);
+  if (shape != nullptr) clip.Set(*shape, drop_axis_[h.node_surface[root]]);
+  const EmitterClip3* cut = shape != nullptr ? &clip : nullptr;
   if (workers != nullptr && workers->threads() > 1) {
-    PartJob job{this, &clip, workers->threads()};
+    PartJob job{this, cut, workers->threads()};
     workers->Run(
         [](void* context, int thread) {
           const PartJob& j = *static_cast<const PartJob*>(context);
-          for (int p = thread; p < kParts; p += j.threads) j.refine->RunPart(p, *j.clip);
+          for (int p = thread; p < kParts; p += j.threads) j.refine->RunPart(p, j.clip);
         },
         &job);
   } else {
-    for (int p = 0; p < kParts; ++p) RunPart(p, clip);
+    for (int p = 0; p < kParts; ++p) RunPart(p, cut);
   }
   size_t needed = 0;
   for (const Part& part : parts_) needed += part.needed;

@@ -51,6 +51,13 @@ class SurfaceEmitterRefine {
   // result is the same bits for any thread count.
   Status FirstShot(uint32_t root, const SurfaceEmitterShape& shape, const int64_t* coverage_q32,
                    int64_t* leaf_irradiance_q32, WorkerPool* workers = nullptr);
+  // Fractional emissivity's first shot from the same coverage: every node
+  // the emitter covers sends its covered fraction through its stored links,
+  // nothing is refined (no new links, no pool). What a new FE light's first
+  // sweep would gather from the emitter alone, so the sweeps can start one
+  // bounce ahead as AR's do.
+  Status FractionalFirstShot(uint32_t root, const int64_t* coverage_q32, int64_t* leaf_irradiance_q32,
+                             WorkerPool* workers = nullptr);
   // New links the last successful FirstShot made.
   int last_links() const { return last_links_; }
   int pool_links() const { return static_cast<int>(parts_[0].pool.size()); }
@@ -89,7 +96,10 @@ class SurfaceEmitterRefine {
   static constexpr uint32_t kPartialJob = 0x80000000u;
   static void Bound(const int64_t (*poly)[3], int count, int64_t centre[3], int64_t* radius);
   void AddJobs(uint32_t node);
-  void RunPart(int part, const EmitterClip3& clip);
+  // clip: null for FractionalFirstShot (every link sends its share).
+  void RunPart(int part, const EmitterClip3* clip);
+  Status Shoot(uint32_t root, const SurfaceEmitterShape* shape, const int64_t* coverage_q32,
+               int64_t* leaf_irradiance_q32, WorkerPool* workers);
   // The sending reads the tables and writes only `part`: two parts run at once.
   void Send(Part& part, uint32_t link_side, uint64_t ratio_q32) const;
   void SendLink(Part& part, const Source& source, uint32_t link_side) const;

@@ -113,7 +113,7 @@ void SurfaceEmitterRefine::AddJobs(uint32_t node) {
 // Jobs part, part + kParts, ...: whole nodes through their links as they
 // are (new factors only where the receiver looks large from them), cut
 // nodes with their clipped polygon.
-void SurfaceEmitterRefine::RunPart(int p, const EmitterClip3& clip) {
+void SurfaceEmitterRefine::RunPart(int p, const EmitterClip3* clip) {
   const BakeHierarchy& h = *h_;
   Part& part = parts_[p];
   part.needed = 0;
@@ -124,7 +124,13 @@ void SurfaceEmitterRefine::RunPart(int p, const EmitterClip3& clip) {
   for (uint32_t j = static_cast<uint32_t>(p); j < job_count_; j += kParts) {
     const uint32_t s = jobs_[j] & ~kPartialJob;
     const bool partial = (jobs_[j] & kPartialJob) != 0;
-    const int count = partial ? clip.Clip(h, *mesh_, s, polygon) : Corners(s, polygon);
+    if (clip == nullptr) {  // fractional emissivity: the node's covered share through every link
+      const uint64_t share =
+          partial ? static_cast<uint64_t>(coverage_mean_q32_[s]) : static_cast<uint64_t>(kOne);
+      for (uint32_t e = send_offsets_[s]; e < send_offsets_[s + 1]; ++e) Send(part, send_[e], share);
+      continue;
+    }
+    const int count = partial ? clip->Clip(h, *mesh_, s, polygon) : Corners(s, polygon);
     Source source{s, polygon, count, partial ? static_cast<uint64_t>(coverage_mean_q32_[s]) : static_cast<uint64_t>(kOne),
                   partial, {0, 0, 0}, 0};
     Bound(source.poly, source.count, source.centre, &source.radius);

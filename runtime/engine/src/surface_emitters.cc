@@ -97,6 +97,7 @@ Status SurfaceEmitters::Place(int slot, const SurfaceEmitterShape& shape, Worker
   }
   if (s.now.solved) std::swap(s.now, s.before);  // keep the last solved one to start from
   s.now.coverage_q32.swap(coverage_scratch_);
+  s.now.root = surface_root_[surface];
   if (refined) s.now.first_shot_q32.swap(first_shot_scratch_);
   s.now.refined = refined;
   s.now.solved = false;
@@ -195,7 +196,11 @@ int SurfaceEmitters::SolvePending(WorkerPool* pool) {
                                        int64_t{1} << kCoverageFracBits, hint, seen);
       solver_.AddEmitted(s.now.coverage_q32.data(), s.now.exitance_q32.data());
     } else {
-      if (warm) solver_.StartNear(s.before.exitance_q32.data(), changed_leaves_.data(), changed_count_);
+      if (warm) {
+        solver_.StartNear(s.before.exitance_q32.data(), changed_leaves_.data(), changed_count_);
+      } else {
+        StartOneBounceAhead(s, pool);
+      }
       last_sweeps_ += solver_.SolveRgb(s.now.coverage_q32.data(), nullptr, s.now.exitance_q32.data(), pool, 0,
                                        hint, seen);
     }
@@ -231,6 +236,24 @@ void SurfaceEmitters::SpreadSolution(int slot, WorkerPool* pool) {
   } else {
     task(&spread, 0);
   }
+}
+
+// A new fractional-emissivity light starts as adaptive refine's does: the
+// emitter's first bounce from its own links (no sweep over every link), plus
+// its emission. One sweep fewer on the 16k room; if the shot fails (a tree
+// deeper than the walk allows) the start stays the emission alone.
+void SurfaceEmitters::StartOneBounceAhead(Slot& s, WorkerPool* pool) {
+  const uint32_t n = solver_.node_count();
+  if (!refine_.FractionalFirstShot(s.now.root, s.now.coverage_q32.data(), first_shot_scratch_.data(), pool).ok())
+    return;
+  for (uint32_t k = 0; k < n; ++k)
+    for (int c = 0; c < 3; ++c) extra_[3 * size_t{k} + c] = first_shot_scratch_[k];
+  int64_t* b = s.now.exitance_q32.data();
+  solver_.ReflectedStart(extra_.data(), b);
+  const BakeHierarchy& h = *bake_->hierarchy;
+  for (uint32_t k = 0; k < n; ++k)
+    if (h.leaf(k))
+      for (int c = 0; c < 3; ++c) b[3 * size_t{k} + c] = AddSat64(b[3 * size_t{k} + c], s.now.coverage_q32[k]);
 }
 
 void SurfaceEmitters::AddTo(int32_t* vertex_q12) const {

@@ -81,6 +81,7 @@ class SurfaceEmitters {
     std::vector<int32_t> unit_q24;      // 3 per vertex
     bool refined = false;               // adaptive refine: first_shot_q32 holds its direct light
     std::vector<int64_t> first_shot_q32;  // per node (leaves), AR only
+    uint32_t root = kBakeNoIndex;       // the emitter's surface's tree
     // exitance_q32 of an AR solution includes the emitter's own exitance
     // (coverage), added after the solve.
   };
@@ -97,6 +98,7 @@ class SurfaceEmitters {
   };
   Status CheckSlot(int slot) const;
   void SpreadSolution(int slot, WorkerPool* pool);
+  void StartOneBounceAhead(Slot& s, WorkerPool* pool);
   void StartFrom(const Slot& s, int64_t* exitance_q32, bool* warm);
 
   const Bake* bake_ = nullptr;
