@@ -240,11 +240,13 @@ void SurfaceEmitters::SpreadSolution(int slot, WorkerPool* pool) {
 
 // A new fractional-emissivity light starts as adaptive refine's does: the
 // emitter's first bounce from its own links (no sweep over every link), plus
-// its emission. One sweep fewer on the 16k room; if the shot fails (a tree
-// deeper than the walk allows) the start stays the emission alone.
+// its emission. One sweep fewer on the 16k room; if the shot cannot be made
+// (no tree, or one deeper than the walk allows) the start stays the
+// emission alone.
 void SurfaceEmitters::StartOneBounceAhead(Slot& s, WorkerPool* pool) {
   const uint32_t n = solver_.node_count();
-  if (!refine_.FractionalFirstShot(s.now.root, s.now.coverage_q32.data(), first_shot_scratch_.data(), pool).ok())
+  if (s.now.root == kBakeNoIndex ||
+      !refine_.FractionalFirstShot(s.now.root, s.now.coverage_q32.data(), first_shot_scratch_.data(), pool).ok())
     return;
   for (uint32_t k = 0; k < n; ++k)
     for (int c = 0; c < 3; ++c) extra_[3 * size_t{k} + c] = first_shot_scratch_[k];
