@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contour_integral.h"
 #include "parallel_for.h"
+#include "polygon_factor_kernel.h"
 #include "radiosity_vec.h"
 
 namespace relight::baker {
@@ -11,7 +13,7 @@ namespace {
 
 using namespace radiosity_vec;
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kTwoPi = 6.28318530717958647692;
 constexpr int kMaxClipped = 8;  // a convex polygon of <= 4 corners clipped by one plane
 
 // Sutherland-Hodgman against the plane n . (y - x) >= 0. Returns the count.
@@ -44,14 +46,16 @@ size_t Pair(size_t s, size_t count) { return (s * (count == 16 ? 7 : 3) + 1) % c
 // patch's plane carry no energy and are skipped.
 double VisibleFraction(const Visibility& vis, const Patch& a, const std::vector<PatchSample>& sa,
                        const Patch& b, const std::vector<PatchSample>& sb) {
-  int valid = 0, visible = 0;
+  int valid = 0;
+  VisibleCounter counter(vis);
   for (size_t s = 0; s < sa.size(); ++s) {
     const Vec3& x = sa[s].point;
     const Vec3& y = sb[Pair(s, sb.size())].point;
     if (Height(b, x) <= 0 || Height(a, y) <= 0) continue;
     ++valid;
-    if (vis.Visible(vis.Offset(x, a.normal), vis.Offset(y, b.normal))) ++visible;
+    counter.Add(vis.Offset(x, a.normal), vis.Offset(y, b.normal));
   }
+  const int visible = counter.visible();
   // A sliver with no valid pair: the factor is tiny; keep it unoccluded.
   return valid == 0 ? 1.0 : static_cast<double>(visible) / valid;
 }
@@ -60,11 +64,12 @@ double PatchToPatchUnoccluded(const Mesh& mesh, const Patch& from,
                               const std::vector<PatchSample>& from_samples, const Patch& to) {
   Vec3 corners[4];
   PatchCorners(mesh, to, corners);
+  double point_factor[32];
+  const size_t count = std::min<size_t>(from_samples.size(), 32);  // 4 x 4 at most
+  PointsToPolygonFormFactors(from_samples.data(), count, from.normal, corners, to.corner_count, to.normal,
+                             point_factor);
   double f = 0;
-  for (const PatchSample& s : from_samples) {
-    f += s.weight *
-         PointToPolygonFormFactor(s.point, from.normal, corners, to.corner_count, to.normal);
-  }
+  for (size_t k = 0; k < count; ++k) f += from_samples[k].weight * point_factor[k];
   return f;
 }
 
@@ -91,16 +96,14 @@ double PointToPolygonFormFactor(const Vec3& x, const Vec3& n, const Vec3* poly, 
   // Lambert: F = 1/(2 pi) sum_k angle(r_k, r_k+1) n . unit(r_k x r_k+1).
   // The sum's sign follows the polygon's winding as seen from x; after the
   // clip the true value is non-negative, so the magnitude is the factor.
+  // Edge terms as polygon_factor_kernel.cc sums them, for the same bits.
   double sum = 0;
   for (int k = 0; k < m; ++k) {
     const Vec3 r0 = clipped[k] - x;
-    const Vec3 r1 = clipped[(k + 1) % m] - x;
-    const Vec3 c = Cross(r0, r1);
-    const double c_len = Length(c);
-    if (c_len <= 0) continue;  // x on the line of this edge: it subtends no angle
-    sum += std::atan2(c_len, Dot(r0, r1)) * Dot(n, c) / c_len;
+    const Vec3 r1 = clipped[k + 1 == m ? 0 : k + 1] - x;
+    sum += ContourEdgeTerm(r0[0], r0[1], r0[2], r1[0], r1[1], r1[2], n[0], n[1], n[2]);
   }
-  return std::min(1.0, std::abs(sum) / (2.0 * kPi));
+  return std::min(1.0, std::abs(sum) / kTwoPi);
 }
 
 PatchSampleSets BuildPatchSampleSets(const Mesh& mesh) {

@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "parallel_for.h"
+#include "polygon_factor_kernel.h"
 #include "radiosity_vec.h"
 
 namespace relight::baker {
@@ -50,12 +51,9 @@ void Unoccluded(const Hierarchy& h, const HierarchyNode& from,
   double f[kMaxPoints];
   const size_t count = std::min<size_t>(from_samples.size(), kMaxPoints);
   double m = 0;
-  for (size_t k = 0; k < count; ++k) {
-    const PatchSample& s = from_samples[k];
-    f[k] = PointToPolygonFormFactor(s.point, from.normal, to.corners.data(), to.corner_count,
-                                    to.normal);
-    m += s.weight * f[k];
-  }
+  PointsToPolygonFormFactors(from_samples.data(), count, from.normal, to.corners.data(), to.corner_count,
+                             to.normal, f);
+  for (size_t k = 0; k < count; ++k) m += from_samples[k].weight * f[k];
   *mean = m;
   *gradient = {0, 0};
   *residual = 0;
@@ -199,14 +197,16 @@ double NodeVisibleFraction(const Hierarchy& h, const NodeSamples& samples, const
   // show up as partial visibility, which refines the link.
   const std::vector<PatchSample>& sp = samples.fine(p);
   const std::vector<PatchSample>& sq = samples.fine(q);
-  int valid = 0, visible = 0;
+  int valid = 0;
+  VisibleCounter counter(vis);
   for (size_t s = 0; s < sp.size(); ++s) {
     const Vec3& x = sp[s].point;
     const Vec3& y = sq[Pair(s, sq.size())].point;
     if (Height(nq, x) <= 0 || Height(np, y) <= 0) continue;
     ++valid;
-    if (vis.Visible(vis.Offset(x, np.normal), vis.Offset(y, nq.normal))) ++visible;
+    counter.Add(vis.Offset(x, np.normal), vis.Offset(y, nq.normal));
   }
+  const int visible = counter.visible();
   if (valid == 0) return 1.0;
   if (!adaptive || visible == 0 || visible == valid) return static_cast<double>(visible) / valid;
   // The 16 rays disagree: the pair is partly hidden and 16 rays give its

@@ -92,6 +92,50 @@ bool Visibility::Visible(const Vec3& from, const Vec3& to) const {
   return ray.tfar >= 0.0f;
 }
 
+int Visibility::CountVisible(const Vec3* from, const Vec3* to, int n) const {
+  int visible = 0;
+  for (int first = 0; first < n; first += 16) {
+    const int count = std::min(16, n - first);
+    alignas(64) RTCRay16 rays;
+    alignas(64) int valid[16];
+    for (int i = 0; i < 16; ++i) {
+      // Every lane defined (Embree reads all 16): an unused one is a unit
+      // ray of zero length, and not valid.
+      valid[i] = 0;
+      rays.org_x[i] = rays.org_y[i] = rays.org_z[i] = 0;
+      rays.dir_x[i] = rays.dir_y[i] = 0;
+      rays.dir_z[i] = 1;
+      rays.tnear[i] = rays.tfar[i] = rays.time[i] = 0;
+      rays.mask[i] = std::numeric_limits<unsigned>::max();
+      rays.id[i] = rays.flags[i] = 0;
+      if (i >= count) continue;
+      const Vec3 d = to[first + i] - from[first + i];
+      const double len = Length(d);
+      if (len <= 2.0 * epsilon_m_) {  // as Visible()
+        ++visible;
+        continue;
+      }
+      const Vec3 dir = (1.0 / len) * d;
+      valid[i] = -1;
+      rays.org_x[i] = static_cast<float>(from[first + i][0]);
+      rays.org_y[i] = static_cast<float>(from[first + i][1]);
+      rays.org_z[i] = static_cast<float>(from[first + i][2]);
+      rays.dir_x[i] = static_cast<float>(dir[0]);
+      rays.dir_y[i] = static_cast<float>(dir[1]);
+      rays.dir_z[i] = static_cast<float>(dir[2]);
+      rays.tnear[i] = static_cast<float>(epsilon_m_);
+      rays.tfar[i] = static_cast<float>(len - epsilon_m_);
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcOccluded16(valid, embree_->scene, &context, &rays);
+    for (int i = 0; i < count; ++i)
+      if (valid[i] != 0 && rays.tfar[i] >= 0.0f) ++visible;
+  }
+  return visible;
+}
+
 Vec3 Visibility::Offset(const Vec3& p, const Vec3& n) const { return p + epsilon_m_ * n; }
 
 }  // namespace relight::baker
