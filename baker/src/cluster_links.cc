@@ -169,10 +169,11 @@ double VisibleFraction(const Hierarchy& h, const ClusterTree& tree, const NodeSa
   const auto faces = [](const ClusterPoint& x, const ClusterPoint& y) {
     return Dot(x.normal, y.point - x.point) > 0 && Dot(y.normal, x.point - y.point) > 0;
   };
-  int valid = 0, visible = 0;
+  int valid = 0;
+  VisibleCounter counter(vis);
   const auto cast = [&](const ClusterPoint& x, const ClusterPoint& y) {
     ++valid;
-    if (vis.Visible(vis.Offset(x.point, x.normal), vis.Offset(y.point, y.normal))) ++visible;
+    counter.Add(vis.Offset(x.point, x.normal), vis.Offset(y.point, y.normal));
   };
   const int rays = std::max(na, nb);
   for (int k = 0; k < rays && na > 0 && nb > 0; ++k) {
@@ -187,6 +188,7 @@ double VisibleFraction(const Hierarchy& h, const ClusterTree& tree, const NodeSa
         cast(pa[static_cast<size_t>(i)], pb[static_cast<size_t>(j)]);
     }
   }
+  const int visible = counter.visible();
   return valid > 0 ? static_cast<double>(visible) / valid : 0.0;
 }
 

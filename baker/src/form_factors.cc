@@ -184,12 +184,14 @@ Eigen::MatrixXd ComputeGatherFactors(const Mesh& mesh, const Visibility& vis,
       if (ff <= 0) continue;
       const bool near = Length(x - pj.centre) < 2.0 * pj.diameter_m;
       const auto& sj = near ? samples.fine[j] : samples.coarse[j];
-      int valid = 0, visible = 0;
+      int valid = 0;
+      VisibleCounter counter(vis);
       for (const PatchSample& s : sj) {
         if (Dot(nx, s.point - x) <= 0) continue;
         ++valid;
-        if (vis.Visible(origin, vis.Offset(s.point, pj.normal))) ++visible;
+        counter.Add(origin, vis.Offset(s.point, pj.normal));
       }
+      const int visible = counter.visible();
       const double v = valid == 0 ? 1.0 : static_cast<double>(visible) / valid;
       g(static_cast<Eigen::Index>(p), static_cast<Eigen::Index>(j)) = ff * v;
     }
