@@ -15,6 +15,7 @@ using namespace radiosity_vec;
 
 constexpr double kTwoPi = 6.28318530717958647692;
 constexpr int kMaxClipped = 8;  // a convex polygon of <= 4 corners clipped by one plane
+constexpr size_t kMaxSamples = 32;  // points of a patch's sample set (4 x 4 at most)
 
 // Sutherland-Hodgman against the plane n . (y - x) >= 0. Returns the count.
 int ClipToFront(const Vec3& x, const Vec3& n, const Vec3* poly, int count, Vec3* out) {
@@ -64,8 +65,8 @@ double PatchToPatchUnoccluded(const Mesh& mesh, const Patch& from,
                               const std::vector<PatchSample>& from_samples, const Patch& to) {
   Vec3 corners[4];
   PatchCorners(mesh, to, corners);
-  double point_factor[32];
-  const size_t count = std::min<size_t>(from_samples.size(), 32);  // 4 x 4 at most
+  double point_factor[kMaxSamples];
+  const size_t count = std::min(from_samples.size(), kMaxSamples);
   PointsToPolygonFormFactors(from_samples.data(), count, from.normal, corners, to.corner_count, to.normal,
                              point_factor);
   double f = 0;
