@@ -5,8 +5,8 @@
 //
 // The edge (a, b) of a polygon seen from x adds angle(r_a, r_b) n . c / |c|,
 // r = corner - x, c = r_a x r_b. The angle is atan2(|c|, r_a . r_b), here by
-// EdgeAngle: glibc's atan2 is a call the loop cannot vectorise, and it was a
-// third of a hierarchical bake's form-factor time.
+// EdgeAngle: glibc's atan2 is a call the loop cannot vectorise, and it was
+// about a quarter of a hierarchical bake's links phase (docs/venue.md).
 #pragma once
 
 namespace relight::baker {
