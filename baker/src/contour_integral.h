@@ -53,4 +53,12 @@ inline double ContourEdgeTerm(double r0x, double r0y, double r0z, double r1x, do
   return c_len > 0 ? term : 0.0;
 }
 
+// The factor from the sum of a polygon's edge terms: its sign follows the
+// winding as seen from x, so the magnitude over 2 pi, at most 1.
+inline double FactorFromContourSum(double sum) {
+  constexpr double kTwoPi = 6.28318530717958647692;
+  const double f = (sum < 0 ? -sum : sum) / kTwoPi;
+  return f < 1.0 ? f : 1.0;
+}
+
 }  // namespace relight::baker

@@ -13,7 +13,6 @@ namespace {
 
 using namespace radiosity_vec;
 
-constexpr double kTwoPi = 6.28318530717958647692;
 constexpr int kMaxClipped = 8;  // a convex polygon of <= 4 corners clipped by one plane
 constexpr size_t kMaxSamples = 32;  // points of a patch's sample set (4 x 4 at most)
 
@@ -104,7 +103,7 @@ double PointToPolygonFormFactor(const Vec3& x, const Vec3& n, const Vec3* poly, 
     const Vec3 r1 = clipped[k + 1 == m ? 0 : k + 1] - x;
     sum += ContourEdgeTerm(r0[0], r0[1], r0[2], r1[0], r1[1], r1[2], n[0], n[1], n[2]);
   }
-  return std::min(1.0, std::abs(sum) / kTwoPi);
+  return FactorFromContourSum(sum);
 }
 
 PatchSampleSets BuildPatchSampleSets(const Mesh& mesh) {

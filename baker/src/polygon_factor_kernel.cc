@@ -8,7 +8,7 @@
 
 // GCC builds one copy of the loop per listed x86-64 extension and picks the
 // widest the CPU has at load time. Compiled with -O3 -ffp-contract=off
-// -fno-math-errno (CMakeLists.txt): the edge terms vectorise over the points,
+// -fno-math-errno -fno-trapping-math (CMakeLists.txt): the edge terms vectorise over the points,
 // without multiply-add contraction, so every copy and the one-point function
 // give the same bits.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
@@ -22,7 +22,6 @@ namespace {
 
 using namespace radiosity_vec;
 
-constexpr double kTwoPi = 6.28318530717958647692;
 constexpr size_t kBatch = 32;  // points a pass (the largest sample set)
 
 // sum[i] = the contour sum of the unclipped polygon seen from (x[i], y[i], z[i]).
@@ -69,7 +68,7 @@ void PointsToPolygonFormFactors(const PatchSample* points, size_t point_count, c
     }
     if (lanes == 0 || count < 3) continue;
     ContourSums(x, y, z, lanes, n, poly, count, sum);
-    for (size_t l = 0; l < lanes; ++l) out[index[l]] = std::min(1.0, std::abs(sum[l]) / kTwoPi);
+    for (size_t l = 0; l < lanes; ++l) out[index[l]] = FactorFromContourSum(sum[l]);
   }
 }
 
