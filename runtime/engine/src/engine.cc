@@ -61,6 +61,7 @@ struct Engine::Impl {
     emitter_grids.Open(bake);
     emitters.set_observer(&emitter_grids);
     StartEngineThreads(options.threads, work, lums.size(), &threads);
+    emitters.PrecomputeBounces(options.emitter_bounce_table_bytes, &threads.pool);
     return Status::Ok();
   }
   void ApplyPendingZoom(size_t index) {

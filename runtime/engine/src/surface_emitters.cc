@@ -191,6 +191,7 @@ int SurfaceEmitters::SolvePending(WorkerPool* pool) {
         solver_.StartNear(s.before.exitance_q32.data(), changed_leaves_.data(), changed_count_);
       } else {
         solver_.ReflectedStart(extra_.data(), s.now.exitance_q32.data());
+        hint = bounces_.AddTo(s.now.coverage_q32.data(), s.now.root, s.now.exitance_q32.data());
       }
       last_sweeps_ += solver_.SolveRgb(no_emission_.data(), extra_.data(), s.now.exitance_q32.data(), pool,
                                        int64_t{1} << kCoverageFracBits, hint, seen);
@@ -198,8 +199,8 @@ int SurfaceEmitters::SolvePending(WorkerPool* pool) {
     } else {
       if (warm) {
         solver_.StartNear(s.before.exitance_q32.data(), changed_leaves_.data(), changed_count_);
-      } else {
-        StartOneBounceAhead(s, pool);
+      } else if (FirstBounceStart(s.now.root, s.now.coverage_q32.data(), s.now.exitance_q32.data(), pool)) {
+        hint = bounces_.AddTo(s.now.coverage_q32.data(), s.now.root, s.now.exitance_q32.data());
       }
       last_sweeps_ += solver_.SolveRgb(s.now.coverage_q32.data(), nullptr, s.now.exitance_q32.data(), pool, 0,
                                        hint, seen);
@@ -243,19 +244,44 @@ void SurfaceEmitters::SpreadSolution(int slot, WorkerPool* pool) {
 // its emission. One sweep fewer on the 16k room; if the shot cannot be made
 // (no tree, or one deeper than the walk allows) the start stays the
 // emission alone.
-void SurfaceEmitters::StartOneBounceAhead(Slot& s, WorkerPool* pool) {
+bool SurfaceEmitters::FirstBounceStart(uint32_t root, const int64_t* coverage_q32, int64_t* b, WorkerPool* pool) {
   const uint32_t n = solver_.node_count();
-  if (s.now.root == kBakeNoIndex ||
-      !refine_.FractionalFirstShot(s.now.root, s.now.coverage_q32.data(), first_shot_scratch_.data(), pool).ok())
-    return;
+  if (root == kBakeNoIndex || !refine_.FractionalFirstShot(root, coverage_q32, first_shot_scratch_.data(), pool).ok())
+    return false;
   for (uint32_t k = 0; k < n; ++k)
     for (int c = 0; c < 3; ++c) extra_[3 * size_t{k} + c] = first_shot_scratch_[k];
-  int64_t* b = s.now.exitance_q32.data();
   solver_.ReflectedStart(extra_.data(), b);
   const BakeHierarchy& h = *bake_->hierarchy;
   for (uint32_t k = 0; k < n; ++k)
     if (h.leaf(k))
-      for (int c = 0; c < 3; ++c) b[3 * size_t{k} + c] = AddSat64(b[3 * size_t{k} + c], s.now.coverage_q32[k]);
+      for (int c = 0; c < 3; ++c) b[3 * size_t{k} + c] = AddSat64(b[3 * size_t{k} + c], coverage_q32[k]);
+  return true;
+}
+
+// Each coarse source lit alone, as a new FE light covering it is solved;
+// what the sweeps added to its start is its later bounces. The slots' arrays
+// are free here (nothing is placed yet), so slot 0's serve as scratch.
+void SurfaceEmitters::PrecomputeBounces(int64_t budget_bytes, WorkerPool* pool) {
+  if (!supported_) return;
+  const BakeHierarchy& h = *bake_->hierarchy;
+  bounces_.Partition(h, budget_bytes);
+  int64_t* coverage = slots_[0].now.coverage_q32.data();
+  int64_t* b = slots_[0].now.exitance_q32.data();
+  int64_t* start = slots_[0].before.exitance_q32.data();
+  const size_t values = size_t{h.node_count()} * 3;
+  for (uint32_t j = 0; j < bounces_.source_count(); ++j) {
+    bounces_.UnitCoverage(j, coverage);
+    const uint32_t root = surface_root_[h.node_surface[bounces_.source_node(j)]];
+    if (!FirstBounceStart(root, coverage, b, pool)) continue;  // its table stays 0
+    for (size_t i = 0; i < values; ++i) start[i] = b[i];
+    SweepContraction seen;
+    solver_.SolveRgb(coverage, nullptr, b, pool, 0, nullptr, &seen);
+    bounces_.Store(j, b, start, seen);
+  }
+  for (Solution* x : {&slots_[0].now, &slots_[0].before}) {
+    for (int64_t& v : x->coverage_q32) v = 0;
+    for (int64_t& v : x->exitance_q32) v = 0;
+  }
 }
 
 void SurfaceEmitters::AddTo(int32_t* vertex_q12) const {

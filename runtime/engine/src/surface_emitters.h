@@ -22,6 +22,7 @@
 #include "relight/base/fixed.h"
 #include "relight/base/status.h"
 #include "relight/engine/surface_emitter.h"
+#include "surface_emitter_bounces.h"
 #include "surface_emitter_refine.h"
 #include "surface_emitter_solve.h"
 #include "surface_emitter_vertices.h"
@@ -42,6 +43,11 @@ class SurfaceEmitters {
   // A bake without a hierarchy opens fine; every call then returns
   // kUnsupported. refine_links: the adaptive-refine pool (new links).
   Status Open(const Bake& bake, int refine_links = kDefaultSurfaceEmitterRefineLinks);
+  // After Open: tabulates the later bounces of coarse sources
+  // (surface_emitter_bounces.h) in at most budget_bytes (<= 0: none), one
+  // solve per source on `pool` (may be null). New lights start from it.
+  void PrecomputeBounces(int64_t budget_bytes, WorkerPool* pool);
+  const EmitterBounceTable& bounces() const { return bounces_; }
 
   // Clips the shape against its surface and stores the coverage; the solve
   // runs at the next SolvePending(). kUnsupported (no hierarchy), kNotFound
@@ -98,7 +104,9 @@ class SurfaceEmitters {
   };
   Status CheckSlot(int slot) const;
   void SpreadSolution(int slot, WorkerPool* pool);
-  void StartOneBounceAhead(Slot& s, WorkerPool* pool);
+  // b = the emission (coverage) plus its first bounce from the emitter's own
+  // links, inner nodes 0; false (b untouched) if the shot cannot be made.
+  bool FirstBounceStart(uint32_t root, const int64_t* coverage_q32, int64_t* b, WorkerPool* pool);
   void StartFrom(const Slot& s, int64_t* exitance_q32, bool* warm);
 
   const Bake* bake_ = nullptr;
@@ -106,6 +114,7 @@ class SurfaceEmitters {
   uint32_t vertex_count_ = 0;
   HierarchySolveQ32 solver_;
   SurfaceEmitterRefine refine_;
+  EmitterBounceTable bounces_;
   std::vector<uint32_t> surface_root_;  // per surface, kBakeNoIndex if it has no tree
   VertexLeafWeights vertex_weights_;
   // first_shot_scratch_ per node; extra_ 3 per node (the first shot in every

@@ -44,6 +44,12 @@ struct EngineOptions {
   // New links one adaptive-refine emitter placement may make (8 bytes each,
   // allocated at Open); a placement needing more is refused with kOutOfRange.
   int emitter_refine_links = kDefaultSurfaceEmitterRefineLinks;
+  // Memory (bytes) for what a new emitter's light does after its first
+  // bounce, tabulated at Open over coarse pieces of every surface (one solve
+  // each: ~2 s and 14 MB on the 16k-patch living room); a new emitter's
+  // solve then starts near its answer and takes fewer sweeps. Scenes too
+  // large for it get coarser pieces; <= 0: no table.
+  int64_t emitter_bounce_table_bytes = kDefaultEmitterBounceTableBytes;
   // false: the bake's radiosity hierarchy is neither read nor kept and no
   // emitter buffers are sized (SetSurfaceEmitter answers kUnsupported). On a
   // hierarchical bake that is most of the engine's memory: relightd opens

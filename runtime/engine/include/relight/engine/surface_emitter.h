@@ -32,6 +32,9 @@ enum class SurfaceEmitterMethod : uint8_t { kFractionalEmissivity, kAdaptiveRefi
 
 // New links one adaptive-refine placement may make (EngineOptions).
 inline constexpr int kDefaultSurfaceEmitterRefineLinks = 65536;
+// Memory for the later bounces of new emitters, tabulated at Open
+// (EngineOptions::emitter_bounce_table_bytes).
+inline constexpr int64_t kDefaultEmitterBounceTableBytes = int64_t{32} << 20;
 
 struct SurfaceEmitterShape {
   std::string surface;  // the bake's surface name (BakeMesh::surface_names)
