@@ -25,6 +25,10 @@
 //
 //   surface_emitter_bench BAKE.rlb SURFACE x0,y0,z0 x1,y1,z1 x2,y2,z2 [--benchmark_...]
 //
+// RELIGHT_BENCH_BOUNCE_TABLE_MB=N in the environment sizes the engine's
+// later-bounce table (EngineOptions::emitter_bounce_table_bytes; 0: none, as
+// before it existed); it prints Open's time and the table's size.
+//
 // On a loaded machine two threads' CPU time counts the pool's waiting:
 // RELIGHT_THREADS=1 in the environment gives one thread's CPU per change.
 //
@@ -37,6 +41,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <string>
 #include <vector>
@@ -203,11 +208,18 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: surface_emitter_bench BAKE.rlb SURFACE x,y,z x,y,z x,y,z [--benchmark_...]\n");
     return 2;
   }
+  relight::EngineOptions options;
+  if (const char* mb = std::getenv("RELIGHT_BENCH_BOUNCE_TABLE_MB"))  // 0: none (the build before the table)
+    options.emitter_bounce_table_bytes = std::atoll(mb) << 20;
   relight::Engine engine;
-  if (relight::Status st = engine.Open(argv[1]); !st.ok()) {
+  const Clock::time_point open_start = Clock::now();
+  if (relight::Status st = engine.Open(argv[1], options); !st.ok()) {
     std::fprintf(stderr, "%s\n", st.ToString().c_str());
     return 2;
   }
+  std::printf("Open: %.2f s, later-bounce table: %d sources, %.1f MB\n",
+              std::chrono::duration<double>(Clock::now() - open_start).count(), engine.emitter_bounce_sources(),
+              static_cast<double>(engine.emitter_bounce_table_size()) / (1 << 20));
   // u along the first edge, w across it in the triangle's plane.
   double u[3], w[3], len = 0, dot = 0, wlen = 0;
   for (int i = 0; i < 3; ++i) len += (c[1][i] - c[0][i]) * (c[1][i] - c[0][i]);

@@ -347,6 +347,14 @@ int Engine::last_update_terms_recombined() const { return impl_ ? impl_->last_te
 
 int Engine::last_update_emitters_solved() const { return impl_ ? impl_->last_emitters : 0; }
 
+int Engine::emitter_bounce_sources() const {
+  return impl_ ? static_cast<int>(impl_->emitters.bounces().source_count()) : 0;
+}
+
+int64_t Engine::emitter_bounce_table_size() const {
+  return impl_ ? static_cast<int64_t>(impl_->emitters.bounces().bytes()) : 0;
+}
+
 int Engine::last_update_emitter_sweeps() const {
   return impl_ ? impl_->emitters.last_sweeps() : 0;
 }

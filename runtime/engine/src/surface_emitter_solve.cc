@@ -247,6 +247,15 @@ void HierarchySolveQ32::ReflectedStart(const int64_t* e, int64_t* b) const {
     }
 }
 
+void HierarchySolveQ32::EmittedAndReflectedStart(const int64_t* emitted, const int64_t* shot, int64_t* b) const {
+  const BakeHierarchy& h = *h_;
+  for (uint32_t k = 0; k < node_count(); ++k)
+    for (int ch = 0; ch < 3; ++ch) {
+      const size_t i = 3 * size_t{k} + ch;
+      b[i] = h.leaf(k) ? AddSat64(RoundShiftSat64(static_cast<Int128>(rho_q32_[i]) * shot[k], -32), emitted[k]) : 0;
+    }
+}
+
 void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
   const BakeHierarchy& h = *h_;
   int32_t* view = view_[block].data();

@@ -101,6 +101,11 @@ class HierarchySolveQ32 {
   // its first shot is known (adaptive refine), so the sweeps start one
   // bounce ahead of zeros.
   void ReflectedStart(const int64_t* irradiance_q32, int64_t* exitance_q32) const;
+  // exitance_q32 = emitted_q32 + rho x shot_q32 on the leaves (both per
+  // node, the same in every channel), 0 on the inner nodes: a new FE light's
+  // start, its emission and its first bounce. The same bits as
+  // ReflectedStart of the shot in every channel, then the emission added.
+  void EmittedAndReflectedStart(const int64_t* emitted_q32, const int64_t* shot_q32, int64_t* exitance_q32) const;
   // exitance_q32 as int32 Q24 (kGatherFracBits), 4 per node (channels 0-2
   // and a zero), as the last
   // SolveRgb left it: what LeavesToVertices reads.

@@ -130,7 +130,7 @@ void SurfaceEmitters::StartFrom(const Slot& s, int64_t* b, bool* warm) {
   const int64_t* now = s.now.coverage_q32.data();
   const int64_t* before = s.before.coverage_q32.data();
   Int128 flux_before = 0, flux_now = 0;  // covered area, Q64 m^2
-  for (uint32_t k = 0; k < n; ++k) {
+  for (uint32_t k = 0; k < n && s.moved && s.before.solved; ++k) {
     if (!h.leaf(k)) continue;
     const Int128 area = static_cast<Int128>(h.node_area[k]);
     flux_before += area * before[k];
@@ -245,16 +245,9 @@ void SurfaceEmitters::SpreadSolution(int slot, WorkerPool* pool) {
 // (no tree, or one deeper than the walk allows) the start stays the
 // emission alone.
 bool SurfaceEmitters::FirstBounceStart(uint32_t root, const int64_t* coverage_q32, int64_t* b, WorkerPool* pool) {
-  const uint32_t n = solver_.node_count();
   if (root == kBakeNoIndex || !refine_.FractionalFirstShot(root, coverage_q32, first_shot_scratch_.data(), pool).ok())
     return false;
-  for (uint32_t k = 0; k < n; ++k)
-    for (int c = 0; c < 3; ++c) extra_[3 * size_t{k} + c] = first_shot_scratch_[k];
-  solver_.ReflectedStart(extra_.data(), b);
-  const BakeHierarchy& h = *bake_->hierarchy;
-  for (uint32_t k = 0; k < n; ++k)
-    if (h.leaf(k))
-      for (int c = 0; c < 3; ++c) b[3 * size_t{k} + c] = AddSat64(b[3 * size_t{k} + c], coverage_q32[k]);
+  solver_.EmittedAndReflectedStart(coverage_q32, first_shot_scratch_.data(), b);
   return true;
 }
 

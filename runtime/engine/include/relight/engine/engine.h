@@ -184,6 +184,10 @@ class Engine {
   // Emitters solved by the last Update() and the sweeps they took (3 channels a sweep).
   int last_update_emitters_solved() const;
   int last_update_emitter_sweeps() const;
+  // The later-bounce table built at Open (EngineOptions::emitter_bounce_table_bytes):
+  // how many coarse sources it holds and its size in bytes (0, 0 without one).
+  int emitter_bounce_sources() const;
+  int64_t emitter_bounce_table_size() const;
   // New links the last adaptive-refine placement made.
   int last_emitter_refine_links() const;
 
