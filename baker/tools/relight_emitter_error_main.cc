@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
   CLI::App app{"run-time emitters (adaptive refine or fractional emissivity) against the naive float64 solve, per vertex"};
   std::string scene_path, bake_path, naive_solver = "auto", method = "ar";
   std::vector<std::string> emitters;
-  double patch_size_m = 0, naive_epsilon = 2.5e-4;
+  double patch_size_m = 0, naive_epsilon = 2.5e-4, table_mb = 32;
   app.add_option("scene", scene_path, "scene TOML")->required();
   app.add_option("--emitter", emitters, "SURFACE:L:x,y,z;... (L cd/m^2 or R,G,B), up to 8")->required();
   app.add_option("--patch-size", patch_size_m, "patch edge length in metres, instead of the scene's");
@@ -46,17 +46,22 @@ int main(int argc, char** argv) {
   app.add_option("--naive-link-epsilon", naive_epsilon, "link epsilon of a hierarchical naive solve");
   app.add_option("--method", method, "the engine's method: ar (adaptive refine, the engine's default) or fe (fractional emissivity)")
       ->check(CLI::IsMember({"ar", "fe"}));
+  app.add_option("--bounce-table-mb", table_mb,
+                 "memory for the engine's later-bounce table, MB (EngineOptions::emitter_bounce_table_bytes; 0: none)")
+      ->check(CLI::NonNegativeNumber);
   CLI11_PARSE(app, argc, argv);
   try {
     relight::baker::Scene scene = relight::baker::LoadScene(scene_path);
     if (patch_size_m > 0) scene.patch_size_m = patch_size_m;
     relight::Engine engine;
+    relight::EngineOptions engine_options;
+    engine_options.emitter_bounce_table_bytes = static_cast<int64_t>(table_mb * 1048576.0);
     if (!bake_path.empty()) {
-      if (relight::Status st = engine.Open(bake_path); !st.ok()) return Fail(st.ToString());
+      if (relight::Status st = engine.Open(bake_path, engine_options); !st.ok()) return Fail(st.ToString());
     } else {
       relight::baker::BakeOptions options;
       options.solver = relight::baker::SolverKind::kHierarchical;
-      if (relight::Status st = engine.Open(relight::baker::Baker(scene, options).Bake()); !st.ok())
+      if (relight::Status st = engine.Open(relight::baker::Baker(scene, options).Bake(), engine_options); !st.ok())
         return Fail(st.ToString());
     }
     for (int i = 0; i < engine.luminaire_count(); ++i) (void)engine.SetDimmer(i, relight::Q1_15::FromRaw(0));

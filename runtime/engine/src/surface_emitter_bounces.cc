@@ -34,11 +34,17 @@ void EmitterBounceTable::Partition(const BakeHierarchy& h, int64_t budget_bytes,
   for (uint32_t k = 0; k < n; ++k)
     if (h.leaf(k)) leaves_.push_back(k);
   uint64_t largest_root = 0;
-  for (uint32_t k = 0; k < n; ++k)
-    if (h.node_parent[k] == kBakeNoIndex && h.node_area[k] > largest_root) largest_root = h.node_area[k];
+  Int128 scene_area = 0;
+  for (uint32_t k = 0; k < n; ++k) {
+    if (h.node_parent[k] != kBakeNoIndex) continue;
+    if (h.node_area[k] > largest_root) largest_root = h.node_area[k];
+    scene_area += h.node_area[k];
+  }
   const Int128 per_source = static_cast<Int128>(leaves_.size()) * 3 * sizeof(int16_t);
   uint32_t count = 0;
-  int64_t area = max_area_q32 > 0 ? max_area_q32 : kBounceSourceMaxAreaQ32;
+  const Int128 share = scene_area / kBounceSources;
+  int64_t area = max_area_q32 > 0 ? max_area_q32 : (share > INT64_MAX ? INT64_MAX : static_cast<int64_t>(share));
+  if (area < 1) area = 1;
   while (true) {
     count = CutIntoSources(h, area, &source_of_);
     if (budget_bytes > 0 && per_source * count <= budget_bytes) break;

@@ -10,7 +10,7 @@
 // converges to (within the rule's tolerance).
 //
 // Why not store it in the bake: it is 6 bytes per leaf per coarse source
-// (14 MB on the 16k-patch living room), and the engine computes it with the
+// (26 MB on the 16k-patch living room), and the engine computes it with the
 // same solver that then uses it, in a few seconds at Open.
 //
 // Scaling: a coarse source's later bounces T (Q32 exitance per unit
@@ -29,18 +29,21 @@
 
 namespace relight {
 
-// Largest area of a coarse source (Q32.32 m^2): 2 m^2. On the 16k-patch
-// living room a new FE light then takes one sweep; with 1 m^2 sources it
-// took one too, at twice the table and Open time (docs/hierarchy.md).
-inline constexpr int64_t kBounceSourceMaxAreaQ32 = int64_t{2} << 32;
+// How finely the scene is cut: sources of at most 1/kBounceSources of the
+// scene's surface area (fewer where the table would not fit its budget).
+// The 16k-patch living room gets 279 sources (26 MB, Open +3 s) and the
+// paper's room 424 (4.6 MB, +0.7 s): new lights there take one sweep
+// (docs/hierarchy.md "Later bounces tabulated at Open").
+inline constexpr int kBounceSources = 128;
 
 class EmitterBounceTable {
  public:
-  // Cuts every tree into coarse sources: the nodes of area at most
-  // max_area_q32 whose parent is larger (or a leaf larger than that), with
-  // max_area_q32 doubled until sources x leaves x 6 bytes fit budget_bytes.
-  // Allocates the table, all zero. budget_bytes <= 0: no table.
-  void Partition(const BakeHierarchy& h, int64_t budget_bytes, int64_t max_area_q32 = kBounceSourceMaxAreaQ32);
+  // Cuts every tree into coarse sources: the nodes of area at most A whose
+  // parent is larger (or a leaf larger than that); A is max_area_q32 (> 0),
+  // else the scene's area / kBounceSources, doubled until sources x leaves x
+  // 6 bytes fit budget_bytes. Allocates the table, all zero. budget_bytes
+  // <= 0: no table.
+  void Partition(const BakeHierarchy& h, int64_t budget_bytes, int64_t max_area_q32 = 0);
 
   uint32_t source_count() const { return static_cast<uint32_t>(source_node_.size()); }
   uint32_t source_node(uint32_t j) const { return source_node_[j]; }

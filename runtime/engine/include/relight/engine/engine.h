@@ -46,7 +46,7 @@ struct EngineOptions {
   int emitter_refine_links = kDefaultSurfaceEmitterRefineLinks;
   // Memory (bytes) for what a new emitter's light does after its first
   // bounce, tabulated at Open over coarse pieces of every surface (one solve
-  // each: ~2 s and 14 MB on the 16k-patch living room); a new emitter's
+  // each: ~3 s and 26 MB on the 16k-patch living room); a new emitter's
   // solve then starts near its answer and takes fewer sweeps. Scenes too
   // large for it get coarser pieces; <= 0: no table.
   int64_t emitter_bounce_table_bytes = kDefaultEmitterBounceTableBytes;
