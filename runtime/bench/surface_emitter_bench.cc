@@ -21,7 +21,8 @@
 // Each iteration is timed on its own (wall clock, manual time); the counters
 // give its median and 99th percentile (p50_ms, p99_ms), the median CPU time
 // of the process (both engine threads, cpu_ms) and the median over the pan
-// change's median of this run (x_pan). Sweeps: the solve's last count.
+// change's median of this run (x_pan). Sweeps: the last solve's count;
+// sweeps_mean: the mean over the iterations.
 //
 //   surface_emitter_bench BAKE.rlb SURFACE x0,y0,z0 x1,y1,z1 x2,y2,z2 [--benchmark_...]
 //
@@ -123,7 +124,7 @@ void BM_PanChange(benchmark::State& state) {
 
 void BM_EmitterPlace(benchmark::State& state) {
   Samples samples;
-  int i = 0, sweeps = 0;
+  int i = 0, sweeps = 0, total = 0, solves = 0;
   for (auto _ : state) {
     // A new light: removed first (untimed), so the solve starts from the emission.
     (void)g_engine->RemoveSurfaceEmitter(0);
@@ -131,23 +132,29 @@ void BM_EmitterPlace(benchmark::State& state) {
     const relight::SurfaceEmitterShape shape = With(g_place[i++ % 3], state);
     samples.Time(state, [&] { (void)g_engine->SetSurfaceEmitter(0, shape, kWhite); });
     sweeps = g_engine->last_update_emitter_sweeps();
+    total += sweeps;
+    ++solves;
   }
   samples.Report(state);
   state.counters["sweeps"] = sweeps;
+  state.counters["sweeps_mean"] = solves > 0 ? static_cast<double>(total) / solves : 0;
 }
 
 void BM_EmitterMove10cm(benchmark::State& state) {
   Samples samples;
-  int i = 0, sweeps = 0;
+  int i = 0, sweeps = 0, total = 0, solves = 0;
   (void)g_engine->SetSurfaceEmitter(0, With(g_square[0], state), kWhite);
   g_engine->Update();
   for (auto _ : state) {
     const relight::SurfaceEmitterShape shape = With(g_square[++i % 4], state);
     samples.Time(state, [&] { (void)g_engine->SetSurfaceEmitter(0, shape, kWhite); });
     sweeps = g_engine->last_update_emitter_sweeps();
+    total += sweeps;
+    ++solves;
   }
   samples.Report(state);
   state.counters["sweeps"] = sweeps;
+  state.counters["sweeps_mean"] = solves > 0 ? static_cast<double>(total) / solves : 0;
 }
 
 void BM_EmitterLuminance(benchmark::State& state) {
