@@ -79,24 +79,28 @@ TEST(EmitterBounceTable, SourcesCutEveryTreeOnceWithinTheAreaAndTheBudget) {
   EmitterBounceTable table;
   // The box's faces are 1 m^2: a quarter of that cuts each face in pieces.
   const int64_t quarter = int64_t{1} << 30;
-  table.Partition(h, int64_t{1} << 40, quarter);
+  table.Partition(h, int64_t{1} << 40, UINT32_MAX, quarter);
   const uint32_t fine = table.source_count();
   EXPECT_GT(fine, 6u);
   EXPECT_EQ(table.bytes(), static_cast<size_t>(per_source) * fine);
   CheckCut(h, table, quarter);
   // A budget one byte short of that table: the area doubles until it fits.
-  table.Partition(h, per_source * fine - 1, quarter);
+  table.Partition(h, per_source * fine - 1, UINT32_MAX, quarter);
   EXPECT_LT(table.source_count(), fine);
   EXPECT_LE(static_cast<int64_t>(table.bytes()), per_source * fine - 1);
   EXPECT_GE(table.source_count(), 6u);
+  // At most half the sources: the area doubles as for the budget.
+  table.Partition(h, int64_t{1} << 40, fine / 2, quarter);
+  EXPECT_LE(table.source_count(), fine / 2);
+  EXPECT_GE(table.source_count(), 6u);
   // Not even one source per face fits: no table.
-  table.Partition(h, per_source * 6 - 1, quarter);
+  table.Partition(h, per_source * 6 - 1, UINT32_MAX, quarter);
   EXPECT_EQ(table.source_count(), 0u);
   EXPECT_EQ(table.bytes(), 0u);
   std::vector<int64_t> b(3 * size_t{h.node_count()}, 7), coverage(h.node_count(), int64_t{1} << 32);
   EXPECT_EQ(table.AddTo(coverage.data(), 0, b.data()), nullptr);
   EXPECT_TRUE(std::all_of(b.begin(), b.end(), [](int64_t v) { return v == 7; }));
-  table.Partition(h, 0, quarter);
+  table.Partition(h, 0, UINT32_MAX, quarter);
   EXPECT_EQ(table.source_count(), 0u);
 }
 
@@ -107,7 +111,7 @@ TEST(EmitterBounceTable, APlacementAddsEachSourcesBouncesByItsCoveredShare) {
   const BakeHierarchy& h = *BoxBake().hierarchy;
   const uint32_t n = h.node_count();
   EmitterBounceTable table;
-  table.Partition(h, int64_t{1} << 40, int64_t{1} << 30);
+  table.Partition(h, int64_t{1} << 40, UINT32_MAX, int64_t{1} << 30);
   ASSERT_GT(table.source_count(), 2u);
   // Source j's bounces: distinct values per leaf and channel, up to 2^40.
   std::vector<int64_t> start(3 * size_t{n}, 0), solved(3 * size_t{n}, 0);

@@ -160,6 +160,13 @@ int main(int argc, char** argv) {
   relight::Log(relight::LogLevel::kInfo, "relightd: %s, %d luminaires, %dx%d at %g frames/s; inputs: %s",
                     config.bake_path.c_str(), daemon.engine().luminaire_count(), config.width, config.height,
                     config.fps, inputs.empty() ? "none" : inputs.c_str());
+  if (daemon.engine().emitter_bounce_sources() > 0) {
+    relight::Log(relight::LogLevel::kInfo,
+                 "relightd: surface emitters: later bounces of %d pieces of the surfaces tabulated at start-up "
+                 "(%.1f MB), so a new emitter's solve starts near its answer",
+                 daemon.engine().emitter_bounce_sources(),
+                 static_cast<double>(daemon.engine().emitter_bounce_table_size()) / (1 << 20));
+  }
 
   // systemd: READY=1 after the first frame, WATCHDOG=1 while frames flow (notify.h).
   relight::daemon::SystemdNotifier notifier;

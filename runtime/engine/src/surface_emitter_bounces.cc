@@ -25,7 +25,8 @@ uint32_t CutIntoSources(const BakeHierarchy& h, int64_t max_area, std::vector<ui
 
 }  // namespace
 
-void EmitterBounceTable::Partition(const BakeHierarchy& h, int64_t budget_bytes, int64_t max_area_q32) {
+void EmitterBounceTable::Partition(const BakeHierarchy& h, int64_t budget_bytes, uint32_t max_sources,
+                                   int64_t max_area_q32) {
   h_ = &h;
   source_node_.clear();
   leaves_.clear();
@@ -47,7 +48,7 @@ void EmitterBounceTable::Partition(const BakeHierarchy& h, int64_t budget_bytes,
   if (area < 1) area = 1;
   while (true) {
     count = CutIntoSources(h, area, &source_of_);
-    if (budget_bytes > 0 && per_source * count <= budget_bytes) break;
+    if (budget_bytes > 0 && per_source * count <= budget_bytes && count <= max_sources) break;
     // One source per tree is as coarse as it gets: then there is no table.
     if (budget_bytes <= 0 || static_cast<uint64_t>(area) >= largest_root || area > (INT64_MAX >> 1)) {
       count = 0;

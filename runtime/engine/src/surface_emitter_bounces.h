@@ -35,15 +35,22 @@ namespace relight {
 // paper's room 424 (4.6 MB, +0.7 s): new lights there take one sweep
 // (docs/hierarchy.md "Later bounces tabulated at Open").
 inline constexpr int kBounceSources = 128;
+// Open's work: sources x the solver's gather and moment entries at most
+// this (one solve per source, ~5 sweeps each). The 16k-patch living room
+// (2.26 M entries a sweep) stays at its 279 sources, about 3.5 s; a scene
+// with ten times the links gets a tenth of the sources instead of ten times
+// the start-up.
+inline constexpr int64_t kBounceTableWork = int64_t{700} << 20;
 
 class EmitterBounceTable {
  public:
   // Cuts every tree into coarse sources: the nodes of area at most A whose
   // parent is larger (or a leaf larger than that); A is max_area_q32 (> 0),
   // else the scene's area / kBounceSources, doubled until sources x leaves x
-  // 6 bytes fit budget_bytes. Allocates the table, all zero. budget_bytes
-  // <= 0: no table.
-  void Partition(const BakeHierarchy& h, int64_t budget_bytes, int64_t max_area_q32 = 0);
+  // 6 bytes fit budget_bytes and there are at most max_sources. Allocates
+  // the table, all zero. budget_bytes <= 0: no table.
+  void Partition(const BakeHierarchy& h, int64_t budget_bytes, uint32_t max_sources = UINT32_MAX,
+                 int64_t max_area_q32 = 0);
 
   uint32_t source_count() const { return static_cast<uint32_t>(source_node_.size()); }
   uint32_t source_node(uint32_t j) const { return source_node_[j]; }

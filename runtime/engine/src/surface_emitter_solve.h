@@ -111,6 +111,8 @@ class HierarchySolveQ32 {
   // SolveRgb left it: what LeavesToVertices reads.
   const int32_t* exitance_q24() const { return view_[0].data(); }
   uint32_t node_count() const { return static_cast<uint32_t>(child_weight_q32_.size()); }
+  // Gather and moment entries a sweep reads: what a sweep costs.
+  size_t sweep_entries() const { return gather_.size() + moments_.entries.size(); }
 
  private:
   struct Sweep;

@@ -257,7 +257,9 @@ bool SurfaceEmitters::FirstBounceStart(uint32_t root, const int64_t* coverage_q3
 void SurfaceEmitters::PrecomputeBounces(int64_t budget_bytes, WorkerPool* pool) {
   if (!supported_) return;
   const BakeHierarchy& h = *bake_->hierarchy;
-  bounces_.Partition(h, budget_bytes);
+  const int64_t entries = static_cast<int64_t>(solver_.sweep_entries()) + 1;
+  const int64_t sources = kBounceTableWork / entries;
+  bounces_.Partition(h, budget_bytes, static_cast<uint32_t>(sources > UINT32_MAX ? UINT32_MAX : sources));
   int64_t* coverage = slots_[0].now.coverage_q32.data();
   int64_t* b = slots_[0].now.exitance_q32.data();
   int64_t* start = slots_[0].before.exitance_q32.data();
