@@ -65,7 +65,11 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   relight::Engine engine;
-  if (relight::Status st = engine.Open(bake_path); !st.ok()) {
+  relight::EngineOptions options;
+  // One placement per emitter: solving it from the emission costs less than
+  // the later-bounce table a long-running engine builds at Open.
+  options.emitter_bounce_table_bytes = 0;
+  if (relight::Status st = engine.Open(bake_path, options); !st.ok()) {
     std::fprintf(stderr, "relight-probe: error: %s\n", st.ToString().c_str());
     return 2;
   }

@@ -155,7 +155,12 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   relight::Engine engine;
-  if (relight::Status st = engine.Open(bake_path); !st.ok()) return Fail(st.ToString(), 2);
+  relight::EngineOptions options;
+  // A still image places each emitter once: solving it from the emission
+  // costs less than the later-bounce table, which pays off when a replay
+  // moves them.
+  if (replay_path.empty()) options.emitter_bounce_table_bytes = 0;
+  if (relight::Status st = engine.Open(bake_path, options); !st.ok()) return Fail(st.ToString(), 2);
   if (list) {
     PrintLuminaires(engine);
     PrintSurfaces(engine);
