@@ -14,22 +14,12 @@
 #include "relight/baker/baker.h"
 #include "relight/engine/engine.h"
 #include "surface_emitter_bounces.h"
+#include "surface_emitter_box.h"
 #include "surface_emitter_test_support.h"
 #include "test_scenes.h"
 
 namespace relight::testing {
 namespace {
-
-const Bake& BoxBake() {
-  static const Bake bake = [] {
-    baker::BakeOptions options;
-    options.solver = baker::SolverKind::kHierarchical;
-    return baker::Baker(baker::test_scenes::ClosedBox(0.0625, {0.7, 0.6, 0.5}), options).Bake();
-  }();
-  return bake;
-}
-
-LightQ12 Light(double cd_m2) { return LightQ12::FromRaw(static_cast<int32_t>(std::lround(cd_m2 * 4096))); }
 
 bool IsUnder(const BakeHierarchy& h, uint32_t node, uint32_t ancestor) {
   for (uint32_t k = node; k != kBakeNoIndex; k = h.node_parent[k])
@@ -74,7 +64,7 @@ void CheckCut(const BakeHierarchy& h, const EmitterBounceTable& table, int64_t m
 }
 
 TEST(EmitterBounceTable, SourcesCutEveryTreeOnceWithinTheAreaAndTheBudget) {
-  const BakeHierarchy& h = *BoxBake().hierarchy;
+  const BakeHierarchy& h = *EmitterBoxBake().hierarchy;
   const int64_t per_source = int64_t{LeafCount(h)} * 6;
   EmitterBounceTable table;
   // The box's faces are 1 m^2: a quarter of that cuts each face in pieces.
@@ -108,7 +98,7 @@ TEST(EmitterBounceTable, SourcesCutEveryTreeOnceWithinTheAreaAndTheBudget) {
 // their source: all of it, half of it (half the leaves covered fully, or all
 // of them at half), nothing for an uncovered source.
 TEST(EmitterBounceTable, APlacementAddsEachSourcesBouncesByItsCoveredShare) {
-  const BakeHierarchy& h = *BoxBake().hierarchy;
+  const BakeHierarchy& h = *EmitterBoxBake().hierarchy;
   const uint32_t n = h.node_count();
   EmitterBounceTable table;
   table.Partition(h, int64_t{1} << 40, UINT32_MAX, int64_t{1} << 30);
@@ -152,18 +142,14 @@ TEST(EmitterBounceTable, APlacementAddsEachSourcesBouncesByItsCoveredShare) {
   EXPECT_TRUE(std::all_of(b.begin(), b.end(), [](int64_t v) { return v == 5; }));
 }
 
-std::vector<int32_t> Luminance(const Engine& engine) {
-  return std::vector<int32_t>(engine.vertex_luminance().begin(), engine.vertex_luminance().end());
-}
-
 // New lights, FE and AR, with the table (the default) and without: the
 // same light to the solver's tolerance (2^-11 of peak), in fewer sweeps.
 TEST(SurfaceEmitterBounces, ANewLightStartedFromTheTableEndsWhereOneWithoutItDoesInFewerSweeps) {
   EngineOptions without_table;
   without_table.emitter_bounce_table_bytes = 0;
   Engine with, without;
-  ASSERT_TRUE(with.Open(Bake(BoxBake())).ok());
-  ASSERT_TRUE(without.Open(Bake(BoxBake()), without_table).ok());
+  ASSERT_TRUE(with.Open(Bake(EmitterBoxBake())).ok());
+  ASSERT_TRUE(without.Open(Bake(EmitterBoxBake()), without_table).ok());
   for (Engine* e : {&with, &without})
     for (int i = 0; i < e->luminaire_count(); ++i) ASSERT_TRUE(e->SetDimmer(i, Q1_15::FromRaw(0)).ok());
   const LightQ12 light[3] = {Light(300), Light(250), Light(200)};

@@ -19,26 +19,12 @@
 #include "surface_emitter_coverage.h"
 #include "surface_emitter_extrapolate.h"
 #include "surface_emitter_solve.h"
+#include "surface_emitter_box.h"
 #include "surface_emitter_test_support.h"
 #include "test_scenes.h"
 
 namespace relight::testing {
 namespace {
-
-LightQ12 Light(double cd_m2) { return LightQ12::FromRaw(static_cast<int32_t>(std::lround(cd_m2 * 4096))); }
-
-const Bake& BoxBake() {
-  static const Bake bake = [] {
-    baker::BakeOptions options;
-    options.solver = baker::SolverKind::kHierarchical;
-    return baker::Baker(baker::test_scenes::ClosedBox(0.0625, {0.7, 0.6, 0.5}), options).Bake();
-  }();
-  return bake;
-}
-
-std::vector<int32_t> Luminance(const Engine& engine) {
-  return std::vector<int32_t>(engine.vertex_luminance().begin(), engine.vertex_luminance().end());
-}
 
 // A triangle on the ceiling (z = 1) moved by (dx, dy) metres.
 SurfaceEmitterShape Ceiling(double dx, double dy) {
@@ -69,7 +55,7 @@ Gap GapOf(const std::vector<int32_t>& a, const std::vector<int32_t>& b) {
 
 TEST(SurfaceEmitterIncremental, RemoveAfterPlaceIsBitIdentical) {
   Engine engine;
-  ASSERT_TRUE(engine.Open(Bake(BoxBake())).ok());
+  ASSERT_TRUE(engine.Open(Bake(EmitterBoxBake())).ok());
   ASSERT_TRUE(engine.SetSurfaceEmitter(0, Ceiling(0, 0), kLight).ok());
   engine.Update();
   const std::vector<int32_t> before = Luminance(engine);
@@ -88,7 +74,7 @@ TEST(SurfaceEmitterIncremental, RemoveAfterPlaceIsBitIdentical) {
 
 TEST(SurfaceEmitterIncremental, MoveThereAndBackIsBitIdentical) {
   Engine engine;
-  ASSERT_TRUE(engine.Open(Bake(BoxBake())).ok());
+  ASSERT_TRUE(engine.Open(Bake(EmitterBoxBake())).ok());
   ASSERT_TRUE(engine.SetSurfaceEmitter(0, Ceiling(0, 0), kLight).ok());
   engine.Update();
   const std::vector<int32_t> before = Luminance(engine);
@@ -110,8 +96,8 @@ TEST(SurfaceEmitterIncremental, MoveSolvedFromThePreviousMatchesASolveFromNothin
   EngineOptions from_nothing;
   from_nothing.emitter_bounce_table_bytes = 0;
   Engine dragged, placed;
-  ASSERT_TRUE(dragged.Open(Bake(BoxBake())).ok());
-  ASSERT_TRUE(placed.Open(Bake(BoxBake()), from_nothing).ok());
+  ASSERT_TRUE(dragged.Open(Bake(EmitterBoxBake())).ok());
+  ASSERT_TRUE(placed.Open(Bake(EmitterBoxBake()), from_nothing).ok());
   for (int i = 0; i < dragged.luminaire_count(); ++i) ASSERT_TRUE(dragged.SetDimmer(i, Q1_15::FromRaw(0)).ok());
   for (int i = 0; i < placed.luminaire_count(); ++i) ASSERT_TRUE(placed.SetDimmer(i, Q1_15::FromRaw(0)).ok());
   int sweeps_moved = 0;
@@ -144,8 +130,8 @@ TEST(SurfaceEmitterIncremental, ADragStopsAfterOneSweepWhereTheLastMoveSaysItMay
   EngineOptions from_nothing;
   from_nothing.emitter_bounce_table_bytes = 0;
   Engine dragged, placed;
-  ASSERT_TRUE(dragged.Open(Bake(BoxBake())).ok());
-  ASSERT_TRUE(placed.Open(Bake(BoxBake()), from_nothing).ok());
+  ASSERT_TRUE(dragged.Open(Bake(EmitterBoxBake())).ok());
+  ASSERT_TRUE(placed.Open(Bake(EmitterBoxBake()), from_nothing).ok());
   for (Engine* e : {&dragged, &placed}) {
     for (int i = 0; i < e->luminaire_count(); ++i) ASSERT_TRUE(e->SetDimmer(i, Q1_15::FromRaw(0)).ok());
   }
@@ -198,8 +184,8 @@ TEST(SurfaceEmitterIncremental, ADragStopsAfterOneSweepWhereTheLastMoveSaysItMay
 // exercises too).
 void ExpectNearSetUpGivesTheWholePullsBits(SurfaceEmitterMethod method) {
   Engine near, whole;
-  ASSERT_TRUE(near.Open(Bake(BoxBake())).ok());
-  ASSERT_TRUE(whole.Open(Bake(BoxBake())).ok());
+  ASSERT_TRUE(near.Open(Bake(EmitterBoxBake())).ok());
+  ASSERT_TRUE(whole.Open(Bake(EmitterBoxBake())).ok());
   const LightQ12 off[3] = {LightQ12::FromRaw(0), LightQ12::FromRaw(0), LightQ12::FromRaw(0)};
   const auto with_method = [method](SurfaceEmitterShape shape) {
     shape.method = method;
@@ -241,7 +227,7 @@ TEST(SurfaceEmitterIncremental, AnAdaptiveRefineMoveSetUpFromTheChangedLeavesGiv
 // only the emitting leaves' ancestors; on any other array, the whole
 // hierarchy. Both must give the same exitance and the same view.
 TEST(SurfaceEmitterIncremental, AddingTheEmitterToTheLastResultPullsOnlyItsAncestorsWithTheWholePullsBits) {
-  const Bake& bake = BoxBake();
+  const Bake& bake = EmitterBoxBake();
   const BakeHierarchy& h = *bake.hierarchy;
   const uint32_t n = h.node_count();
   HierarchySolveQ32 solver;
@@ -316,7 +302,7 @@ TEST(SurfaceEmitterIncremental, OneThreadAndTwoGiveTheSameBits) {
     EngineOptions options;
     options.threads = t + 1;
     Engine engine;
-    ASSERT_TRUE(engine.Open(Bake(BoxBake()), options).ok());
+    ASSERT_TRUE(engine.Open(Bake(EmitterBoxBake()), options).ok());
     ASSERT_EQ(engine.thread_count(), t + 1);
     ASSERT_TRUE(engine.SetSurfaceEmitter(0, Ceiling(0, 0), kLight).ok());
     engine.Update();
