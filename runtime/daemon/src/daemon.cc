@@ -309,6 +309,7 @@ Status Daemon::Open(const DaemonConfig& config) {
   RELIGHT_RETURN_IF_ERROR(m.LoadPatchFile(&p));
   m.engine_options.threads = config.engine_threads;
   m.engine_options.surface_emitters = !p.emitters.empty();
+  m.engine_options.emitter_bounce_table_bytes = config.emitter_bounce_table_bytes;
   m.engine_options.keep_direct_inputs = false;  // nothing here reads them after Open
   m.engine_options.grids = false;               // nor the grids: frames show the surfaces
   if (config.release_startup_memory) RELIGHT_RETURN_IF_ERROR(CompileShadersThenReleaseCompiler(config, &m.pipeline));

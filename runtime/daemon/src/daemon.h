@@ -64,6 +64,10 @@ struct DaemonConfig {
   bool exit_when_replay_done = false;  // after the frame that shows the replay's (or DMX replay's) last change and fade
   int64_t max_frames = 0;     // 0: no limit
   int engine_threads = 0;     // Engine::Update's threads (EngineOptions); 0: its default
+  // Memory for the engine's later-bounce table of surface emitters
+  // (EngineOptions::emitter_bounce_table_bytes): built at start-up when the
+  // patch has an [[emitter]]; 0: none (a faster start, more sweeps a new emitter).
+  int64_t emitter_bounce_table_bytes = kDefaultEmitterBounceTableBytes;
   // Camera: the bake's, with any of these replacing its part.
   std::optional<std::array<float, 3>> camera_pos, camera_target;  // metres
   float fov_y_deg = 0;        // 0: the bake's

@@ -82,6 +82,12 @@ int main(int argc, char** argv) {
   app.add_option("--threads", config.engine_threads,
                  "engine threads, 1..16 (default: RELIGHT_THREADS, else the cores, at most 2)")
       ->check(CLI::Range(1, 16));
+  double table_mb = static_cast<double>(config.emitter_bounce_table_bytes) / (1 << 20);
+  app.add_option("--emitter-table-mb", table_mb,
+                 "with [[emitter]]s: memory for their later bounces, tabulated at start-up (a few seconds) so a "
+                 "new emitter's solve starts near its answer; 0: none (faster start, slower placements)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 4096.0));
   app.add_option("--fps", config.fps, "frames per second")->capture_default_str()->check(CLI::Range(0.1, 1000.0));
   app.add_option("--width", config.width, "frame width, pixels")->capture_default_str()->check(CLI::Range(16, 8192));
   app.add_option("--height", config.height, "frame height, pixels")->capture_default_str()->check(CLI::Range(16, 8192));
@@ -127,6 +133,7 @@ int main(int argc, char** argv) {
   config.fov_y_deg = static_cast<float>(fov);
   config.white_q12 = white_cd_m2 > 0 ? static_cast<int32_t>(std::lround(white_cd_m2 * 4096.0)) : 0;
 
+  config.emitter_bounce_table_bytes = static_cast<int64_t>(table_mb * (1 << 20));
   relight::daemon::Daemon daemon;
   if (relight::Status st = daemon.Open(config); !st.ok()) return Fail(st, 2);
 

@@ -123,20 +123,22 @@ Status SurfaceEmitters::Remove(int slot) {
 // within a factor 2 of the new one: the start's error is then the difference
 // of two similar indirect fields (a drag: mostly the near field), against
 // the whole indirect field from the emission alone. A new light (placed
-// where nothing was, or after a remove) starts from its emission.
+// where nothing was, or after a remove) starts from its emission (and
+// SolvePending then adds its first bounce and the later-bounce table).
 void SurfaceEmitters::StartFrom(const Slot& s, int64_t* b, bool* warm) {
   const BakeHierarchy& h = *bake_->hierarchy;
   const uint32_t n = h.node_count();
   const int64_t* now = s.now.coverage_q32.data();
   const int64_t* before = s.before.coverage_q32.data();
+  const bool moved = s.moved && s.before.solved;  // else no flux to compare
   Int128 flux_before = 0, flux_now = 0;  // covered area, Q64 m^2
-  for (uint32_t k = 0; k < n && s.moved && s.before.solved; ++k) {
+  for (uint32_t k = 0; k < n && moved; ++k) {
     if (!h.leaf(k)) continue;
     const Int128 area = static_cast<Int128>(h.node_area[k]);
     flux_before += area * before[k];
     flux_now += area * now[k];
   }
-  *warm = s.moved && s.before.solved && flux_before <= 2 * flux_now && flux_now <= 2 * flux_before;
+  *warm = moved && flux_before <= 2 * flux_now && flux_now <= 2 * flux_before;
   if (*warm) {
     // The previous solution with the new emission in place of the old, so
     // the first sweep's change is light, not the step in emission (the
@@ -175,8 +177,8 @@ int SurfaceEmitters::SolvePending(WorkerPool* pool) {
     last_warm_ += warm ? 1 : 0;
     const uint32_t n = solver_.node_count();
     // A move starts where the last solve left off: the slot's last move
-    // says how fast its sweeps will contract. A new light neither takes
-    // nor leaves a hint.
+    // says how fast its sweeps will contract. A new light leaves no hint;
+    // it takes the one of the table's source it covers most (below).
     if (!warm || s.drag_refined != s.now.refined) s.drag = SweepContraction{};
     const SweepContraction* hint = warm ? &s.drag : nullptr;
     SweepContraction* seen = warm ? &s.drag : nullptr;
@@ -241,9 +243,9 @@ void SurfaceEmitters::SpreadSolution(int slot, WorkerPool* pool) {
 
 // A new fractional-emissivity light starts as adaptive refine's does: the
 // emitter's first bounce from its own links (no sweep over every link), plus
-// its emission. One sweep fewer on the 16k room; if the shot cannot be made
-// (no tree, or one deeper than the walk allows) the start stays the
-// emission alone.
+// its emission; the table's later bounces go on top. If the shot cannot be
+// made (no tree, or one deeper than the walk allows) the start stays the
+// emission alone, without the table.
 bool SurfaceEmitters::FirstBounceStart(uint32_t root, const int64_t* coverage_q32, int64_t* b, WorkerPool* pool) {
   if (root == kBakeNoIndex || !refine_.FractionalFirstShot(root, coverage_q32, first_shot_scratch_.data(), pool).ok())
     return false;
