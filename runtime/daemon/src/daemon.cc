@@ -1,7 +1,6 @@
 #include "daemon.h"
 
 #include <algorithm>
-#include <cstdint>
 
 #include "bake_reload.h"
 #include "engine_registers.h"
