@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   std::string scene_path, bake_path, naive_solver = "auto", method = "ar";
   std::vector<std::string> emitters;
   double patch_size_m = 0, naive_epsilon = 2.5e-4, table_mb = 32;
+  int refine_bits = relight::kDefaultSurfaceEmitterRefineBits;
   app.add_option("scene", scene_path, "scene TOML")->required();
   app.add_option("--emitter", emitters, "SURFACE:L:x,y,z;... (L cd/m^2 or R,G,B), up to 8")->required();
   app.add_option("--patch-size", patch_size_m, "patch edge length in metres, instead of the scene's");
@@ -49,6 +50,11 @@ int main(int argc, char** argv) {
   app.add_option("--bounce-table-mb", table_mb,
                  "memory for the engine's later-bounce table, MB (EngineOptions::emitter_bounce_table_bytes; 0: none)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--refine-bits", refine_bits,
+                 "adaptive refine's threshold: new factors where a link carries 2^-N of the emitter's exitance "
+                 "(EngineOptions::emitter_refine_bits)")
+      ->check(CLI::Range(0, 32))
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   try {
     relight::baker::Scene scene = relight::baker::LoadScene(scene_path);
@@ -56,6 +62,7 @@ int main(int argc, char** argv) {
     relight::Engine engine;
     relight::EngineOptions engine_options;
     engine_options.emitter_bounce_table_bytes = static_cast<int64_t>(table_mb * 1048576.0);
+    engine_options.emitter_refine_bits = refine_bits;
     if (!bake_path.empty()) {
       if (relight::Status st = engine.Open(bake_path, engine_options); !st.ok()) return Fail(st.ToString());
     } else {

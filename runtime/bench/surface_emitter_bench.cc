@@ -30,6 +30,9 @@
 // later-bounce table (EngineOptions::emitter_bounce_table_bytes; 0: none, as
 // before it existed); it prints Open's time and the table's size.
 //
+// RELIGHT_BENCH_REFINE_BITS=N sets adaptive refine's threshold to 2^-N of
+// the emitter's exitance (EngineOptions::emitter_refine_bits).
+//
 // On a loaded machine two threads' CPU time counts the pool's waiting:
 // RELIGHT_THREADS=1 in the environment gives one thread's CPU per change.
 //
@@ -218,6 +221,7 @@ int main(int argc, char** argv) {
   relight::EngineOptions options;
   if (const char* mb = std::getenv("RELIGHT_BENCH_BOUNCE_TABLE_MB"))  // 0: none (the build before the table)
     options.emitter_bounce_table_bytes = std::atoll(mb) << 20;
+  if (const char* bits = std::getenv("RELIGHT_BENCH_REFINE_BITS")) options.emitter_refine_bits = std::atoi(bits);
   relight::Engine engine;
   const Clock::time_point open_start = Clock::now();
   if (relight::Status st = engine.Open(argv[1], options); !st.ok()) {

@@ -57,7 +57,7 @@ struct Engine::Impl {
     }
     RELIGHT_RETURN_IF_ERROR(SetUpLuminaires(&bake, !options.keep_direct_inputs, &lums, &work));
     SizeOutputs(bake, &out, &mix);
-    RELIGHT_RETURN_IF_ERROR(emitters.Open(bake, options.emitter_refine_links));
+    RELIGHT_RETURN_IF_ERROR(emitters.Open(bake, options.emitter_refine_links, options.emitter_refine_bits));
     emitter_grids.Open(bake);
     emitters.set_observer(&emitter_grids);
     StartEngineThreads(options.threads, work, lums.size(), &threads);

@@ -5,7 +5,9 @@
 // the node's). f (UQ0.32) x ratio -> Q32 irradiance per unit exitance;
 // g (Q8.23 per metre) x ratio (Q32) >> 23 -> Q32 per metre, as the solver's
 // gathers (surface_emitter_solve.cc). Coverage means: area (Q32.32 m^2,
-// < 2^64) x fraction (<= 2^32) summed over <= 4 children, < 2^98.
+// < 2^64) x fraction (<= 2^32) summed over <= 4 children, < 2^98. Their
+// first moments: OffsetMomentQ32 below; the moment term of an unrefined
+// send: MomentTerm (surface_emitter_refine_send.cc).
 #include "surface_emitter_refine.h"
 
 #include <algorithm>
@@ -24,13 +26,19 @@ constexpr int kStackNodes = 1024;
 // Receivers further than this many of their radii from the polygon take the
 // factor at their centroid only.
 constexpr int64_t kFarRadii = 4;
-// BF's threshold on F x B for the emitter's light, B its covered fraction
-// (UQ0.32): 2^-10 of its exitance. Measured (docs/hierarchy.md, "AR"):
-// 2^-11 halves the living room's remaining mean error at 2-3x the new links.
-constexpr uint64_t kRefineThresholdQ32 = uint64_t{1} << 22;
 
 const int32_t* CornerQ16(const BakeHierarchy& h, const BakeMesh& mesh, uint32_t node, int k) {
   return &mesh.positions[3 * size_t{h.node_corners[size_t{node} * kBakeMaxNodeCorners + static_cast<size_t>(k)]}];
+}
+
+// A covered fraction (Q32, <= 2^32) times a centre offset (Q16 metres,
+// < 2^33): Q32 x metres, rounded; < 2^65 before the shift, so in 128 bits.
+// A real first moment is below 2^49 (a fraction of 1 times half a 32 km
+// node); kMomentLimit bounds what a hostile bake could make of it, so a
+// child's area (< 2^64) times it, over <= 4 children, stays below 2^117.
+constexpr int64_t kMomentLimit = int64_t{1} << 50;
+int64_t OffsetMomentQ32(int64_t b, int64_t d_q16) {
+  return RoundShiftSat64(static_cast<Int128>(b) * d_q16, -16);
 }
 
 int64_t GradientTerm(int64_t gu, int64_t gv, const int32_t* uv_q16) {
@@ -54,9 +62,14 @@ void UnitNormal(const Int128 normal[3], int32_t out_q30[3]) {
 
 }  // namespace
 
-Status SurfaceEmitterRefine::Open(const Bake& bake, int pool_links) {
+Status SurfaceEmitterRefine::Open(const Bake& bake, int pool_links, int refine_bits) {
   if (!bake.hierarchy) return Status(StatusCode::kUnsupported, "bake has no hierarchy");
   if (pool_links < 0) return Status(StatusCode::kInvalidArgument, "surface emitter: refine pool < 0 links");
+  if (refine_bits < 0 || refine_bits > 32) {
+    return Status(StatusCode::kInvalidArgument,
+                  StrFormat("surface emitter: refine threshold 2^-%d outside 2^0..2^-32 "
+                            "(EngineOptions::emitter_refine_bits)", refine_bits));
+  }
   h_ = &*bake.hierarchy;
   mesh_ = &bake.mesh;
   const BakeHierarchy& h = *h_;
@@ -123,6 +136,7 @@ Status SurfaceEmitterRefine::Open(const Bake& bake, int pool_links) {
     if (h.link_f_qp[i] != 0) send_[fill[h.link_p[i]]++] = 2 * i + 1;
   }
   coverage_mean_q32_.assign(n, 0);
+  coverage_moment_q32_.assign(size_t{n} * 2, 0);
   for (Part& part : parts_) {
     part.e0.assign(n, 0);
     part.eu.assign(n, 0);
@@ -130,7 +144,8 @@ Status SurfaceEmitterRefine::Open(const Bake& bake, int pool_links) {
     part.pool.assign(static_cast<size_t>(pool_links), NewLink{0, 0, 0, 0});
   }
   jobs_.assign(n, 0);
-  refine_threshold_q32_ = kRefineThresholdQ32;
+  // BF's threshold on F x B (UQ0.32) for the emitter's light.
+  refine_threshold_q32_ = uint64_t{1} << (32 - refine_bits);
   return Status::Ok();
 }
 
@@ -252,10 +267,26 @@ Status SurfaceEmitterRefine::Shoot(uint32_t root, const SurfaceEmitterShape* sha
       continue;
     }
     Int128 sum = 0;
-    const uint32_t first = h.node_first_child[k];
-    for (uint32_t c = first; c < first + h.node_child_count[k]; ++c)
-      sum += static_cast<Int128>(h.node_area[c]) * coverage_mean_q32_[c];
-    coverage_mean_q32_[k] = h.node_area[k] == 0 ? 0 : static_cast<int64_t>(sum / h.node_area[k]);
+    const uint32_t first = h.node_first_child[k], last = first + h.node_child_count[k];
+    for (uint32_t c = first; c < last; ++c) sum += static_cast<Int128>(h.node_area[c]) * coverage_mean_q32_[c];
+    const Int128 area = static_cast<Int128>(h.node_area[k]);
+    coverage_mean_q32_[k] = area == 0 ? 0 : static_cast<int64_t>(sum / area);
+    int64_t* moment = &coverage_moment_q32_[2 * size_t{k}];
+    moment[0] = moment[1] = 0;
+    if (coverage_mean_q32_[k] <= 0) continue;  // only covered nodes send
+    // The first moment as the solver's pull has it: m_k = sum_c A_c (m_c + B_c (c_c - c_k)) / A_k.
+    const int32_t* ck = &centre_uv_q16_[2 * size_t{k}];
+    Int128 m[2] = {0, 0};
+    for (uint32_t c = first; c < last; ++c) {
+      const int64_t b = coverage_mean_q32_[c];
+      if (b == 0) continue;
+      const int32_t* cc = &centre_uv_q16_[2 * size_t{c}];
+      for (int a = 0; a < 2; ++a) {
+        const int64_t term = AddSat64(coverage_moment_q32_[2 * size_t{c} + a], OffsetMomentQ32(b, int64_t{cc[a]} - ck[a]));
+        m[a] += static_cast<Int128>(h.node_area[c]) * std::clamp(term, -kMomentLimit, kMomentLimit);
+      }
+    }
+    for (int a = 0; a < 2; ++a) moment[a] = area == 0 ? 0 : static_cast<int64_t>(m[a] / area);
   }
   // Fig. 5 from the root: fully covered subtrees send as they are; a partly
   // covered node's links get new factors for its clipped part. The walk

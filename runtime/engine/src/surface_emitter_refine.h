@@ -38,8 +38,10 @@ class WorkerPool;
 
 class SurfaceEmitterRefine {
  public:
-  // pool_links: new links one placement may make (kDefaultSurfaceEmitterRefineLinks by default).
-  Status Open(const Bake& bake, int pool_links);
+  // pool_links: new links one placement may make (kDefaultSurfaceEmitterRefineLinks by default);
+  // refine_bits: new factors where a link carries 2^-refine_bits of the
+  // emitter's exitance or more (0..32, kDefaultSurfaceEmitterRefineBits).
+  Status Open(const Bake& bake, int pool_links, int refine_bits = kDefaultSurfaceEmitterRefineBits);
   // First-shot irradiance on every leaf, Q32 lux per lm/m^2 the emitter
   // leaves (its surface's unit exitance), from the emitter `shape` on the
   // tree at `root`. coverage_q32 is SurfaceEmitterCoverageQ32's output for
@@ -78,6 +80,9 @@ class SurfaceEmitterRefine {
     uint64_t coverage_q32;
     bool partial;
     int64_t centre[3], radius;  // Bound() of poly
+    // First moment of the covered fraction about the node's centre (Q32 x m,
+    // u and v): null where it is zero or not used (leaves, whole nodes, FE).
+    const int64_t* moment_q32;
   };
   // One of the two shares of a placement's sources. FirstShot always cuts
   // the walk's sources in two, alternately, whatever the thread count, and
@@ -101,8 +106,10 @@ class SurfaceEmitterRefine {
   Status Shoot(uint32_t root, const SurfaceEmitterShape* shape, const int64_t* coverage_q32,
                int64_t* leaf_irradiance_q32, WorkerPool* workers);
   // The sending reads the tables and writes only `part`: two parts run at once.
-  void Send(Part& part, uint32_t link_side, uint64_t ratio_q32) const;
+  // moment_q32: the source's Source::moment_q32 (may be null).
+  void Send(Part& part, uint32_t link_side, uint64_t ratio_q32, const int64_t* moment_q32 = nullptr) const;
   void SendLink(Part& part, const Source& source, uint32_t link_side) const;
+  int64_t MomentTerm(uint32_t link, bool from_p, const int64_t* moment_q32) const;
   // Sum of F from the receiver's quadrature points to the polygon; with
   // `gradient`, also the least-squares slope of F over them (Q32 per metre).
   // centre, radius: Bound() of the polygon the points are compared with.
@@ -125,10 +132,11 @@ class SurfaceEmitterRefine {
   std::vector<uint32_t> tree_end_;        // per node that is a root: one past its tree
   std::vector<uint32_t> send_offsets_, send_;  // per source node: link sides it sends through
   std::vector<int64_t> coverage_mean_q32_;
+  std::vector<int64_t> coverage_moment_q32_;  // 2 per node: Source::moment_q32
   Part parts_[kParts];
   std::vector<uint32_t> jobs_;  // capacity: every node once
   uint32_t job_count_ = 0;
-  uint64_t refine_threshold_q32_ = 0;  // kRefineThresholdQ32
+  uint64_t refine_threshold_q32_ = 0;  // 2^(32 - refine_bits)
   int last_links_ = 0;
 };
 

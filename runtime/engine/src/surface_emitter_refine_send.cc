@@ -18,7 +18,8 @@ void SurfaceEmitterRefine::Add(Part& part, uint32_t receiver, int64_t e0, int64_
   ++part.needed;  // past the pool: only counts what the placement would need
 }
 
-void SurfaceEmitterRefine::Send(Part& part, uint32_t link_side, uint64_t ratio_q32) const {
+void SurfaceEmitterRefine::Send(Part& part, uint32_t link_side, uint64_t ratio_q32,
+                                const int64_t* moment_q32) const {
   const BakeHierarchy& h = *h_;
   const uint32_t link = link_side >> 1;
   const bool from_p = (link_side & 1) != 0;
@@ -26,10 +27,30 @@ void SurfaceEmitterRefine::Send(Part& part, uint32_t link_side, uint64_t ratio_q
   const uint32_t f = from_p ? h.link_f_qp[link] : h.link_f_pq[link];
   const int32_t* g = from_p ? &h.link_g_qp[2 * size_t{link}] : &h.link_g_pq[2 * size_t{link}];
   part.e0[r] = AddSat64(part.e0[r], RoundShiftSat64(static_cast<Int128>(f) * ratio_q32, -32));
+  if (moment_q32 != nullptr) part.e0[r] = AddSat64(part.e0[r], MomentTerm(link, from_p, moment_q32));
   if (g[0] != 0 || g[1] != 0) {
     part.eu[r] = AddSat64(part.eu[r], RoundShiftSat64(static_cast<Int128>(g[0]) * ratio_q32, -kBakeGradientFracBits));
     part.ev[r] = AddSat64(part.ev[r], RoundShiftSat64(static_cast<Int128>(g[1]) * ratio_q32, -kBakeGradientFracBits));
   }
+}
+
+// FE's source-moment term (surface_emitter_moments.h) for one link side of
+// a partly covered inner node: f (g_rev / f_rev) . m, the part of the node
+// the receiver sees best against its mean, so an unrefined link sends what
+// FE's gathers would. g_rev (Q8.23 per metre) . m (Q32 x m) is Q55, rounded
+// to Q32 (saturated: < 2^63); f / f_rev as Q32 (f < 2^32, so the quotient
+// of f 2^32 fits 64 bits); their product < 2^127 in 128 bits.
+int64_t SurfaceEmitterRefine::MomentTerm(uint32_t link, bool from_p, const int64_t* moment_q32) const {
+  const BakeHierarchy& h = *h_;
+  const uint64_t f = from_p ? h.link_f_qp[link] : h.link_f_pq[link];
+  const uint64_t f_rev = from_p ? h.link_f_pq[link] : h.link_f_qp[link];
+  if (f == 0 || f_rev == 0) return 0;  // the solver's rule: no reverse factor, no term
+  const int32_t* g_rev = from_p ? &h.link_g_pq[2 * size_t{link}] : &h.link_g_qp[2 * size_t{link}];
+  const int64_t gm_q32 = RoundShiftSat64(
+      static_cast<Int128>(g_rev[0]) * moment_q32[0] + static_cast<Int128>(g_rev[1]) * moment_q32[1],
+      -kBakeGradientFracBits);
+  const uint64_t ratio_q32 = (f << 32) / f_rev;
+  return RoundShiftSat64(static_cast<Int128>(gm_q32) * ratio_q32, -32);
 }
 
 // Below a receiver the stored link treated as one node: each child gets the
@@ -72,7 +93,7 @@ void SurfaceEmitterRefine::SendLink(Part& part, const Source& source, uint32_t l
   // receiver looks large from the emitter.
   const bool refine_source = source.partial && ((f * cov) >> 32) >= refine_threshold_q32_;
   const bool refine_receiver = !h.leaf(r) && ((reverse * cov) >> 32) >= refine_threshold_q32_;
-  if (!refine_source && !refine_receiver) return Send(part, link_side, cov);
+  if (!refine_source && !refine_receiver) return Send(part, link_side, cov, source.moment_q32);
   if (part.needed >= part.pool.size()) {  // over: count, do not compute
     if (!refine_receiver) return Add(part, r, 0, 0, 0);
     return RefineReceiver(part, r, source, 0, reverse);
@@ -82,7 +103,7 @@ void SurfaceEmitterRefine::SendLink(Part& part, const Source& source, uint32_t l
   Bound(whole, whole_count, whole_centre, &whole_radius);
   const uint64_t den = SumFactorsQ32(r, whole, whole_count, whole_centre, whole_radius);
   // The receiver sees the node only edge-on at its points: keep FE's share.
-  if (den == 0) return Send(part, link_side, cov);
+  if (den == 0) return Send(part, link_side, cov, source.moment_q32);
   // The same points for both, so the ratio is the emitter's share as r sees it.
   const uint64_t num =
       source.partial ? SumFactorsQ32(r, source.poly, source.count, whole_centre, whole_radius) : den;
@@ -131,12 +152,19 @@ void SurfaceEmitterRefine::RunPart(int p, const EmitterClip3* clip) {
       continue;
     }
     const int count = partial ? clip->Clip(h, *mesh_, s, polygon) : Corners(s, polygon);
-    Source source{s, polygon, count, partial ? static_cast<uint64_t>(coverage_mean_q32_[s]) : static_cast<uint64_t>(kOne),
-                  partial, {0, 0, 0}, 0};
+    const bool moment = partial && !h.leaf(s);  // a whole node's or a leaf's is zero
+    Source source{s,
+                  polygon,
+                  count,
+                  partial ? static_cast<uint64_t>(coverage_mean_q32_[s]) : static_cast<uint64_t>(kOne),
+                  partial,
+                  {0, 0, 0},
+                  0,
+                  moment ? &coverage_moment_q32_[2 * size_t{s}] : nullptr};
     Bound(source.poly, source.count, source.centre, &source.radius);
     for (uint32_t e = send_offsets_[s]; e < send_offsets_[s + 1]; ++e) {
       if (count == 0) {
-        Send(part, send_[e], source.coverage_q32);  // a sliver the clip lost
+        Send(part, send_[e], source.coverage_q32, source.moment_q32);  // a sliver the clip lost
       } else {
         SendLink(part, source, send_[e]);
       }

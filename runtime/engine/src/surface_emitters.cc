@@ -23,14 +23,14 @@ Status NoHierarchy() {
 
 }  // namespace
 
-Status SurfaceEmitters::Open(const Bake& bake, int refine_links) {
+Status SurfaceEmitters::Open(const Bake& bake, int refine_links, int refine_bits) {
   bake_ = &bake;
   vertex_count_ = bake.mesh.vertex_count();
   supported_ = bake.hierarchy.has_value();
   if (!supported_) return Status::Ok();
   // The hierarchy's indices were checked by the engine's ValidateBake.
   RELIGHT_RETURN_IF_ERROR(solver_.Init(bake));
-  RELIGHT_RETURN_IF_ERROR(refine_.Open(bake, refine_links));
+  RELIGHT_RETURN_IF_ERROR(refine_.Open(bake, refine_links, refine_bits));
   const BakeHierarchy& h = *bake.hierarchy;
   surface_root_.assign(bake.mesh.surface_names.size(), kBakeNoIndex);
   for (uint32_t k = 0; k < h.node_count(); ++k) {

@@ -42,7 +42,8 @@ class SurfaceEmitters {
  public:
   // A bake without a hierarchy opens fine; every call then returns
   // kUnsupported. refine_links: the adaptive-refine pool (new links).
-  Status Open(const Bake& bake, int refine_links = kDefaultSurfaceEmitterRefineLinks);
+  Status Open(const Bake& bake, int refine_links = kDefaultSurfaceEmitterRefineLinks,
+              int refine_bits = kDefaultSurfaceEmitterRefineBits);
   // After Open: tabulates the later bounces of coarse sources
   // (surface_emitter_bounces.h) in at most budget_bytes (<= 0: none), one
   // solve per source on `pool` (may be null). New lights start from it.

@@ -44,6 +44,10 @@ struct EngineOptions {
   // New links one adaptive-refine emitter placement may make (8 bytes each,
   // allocated at Open); a placement needing more is refused with kOutOfRange.
   int emitter_refine_links = kDefaultSurfaceEmitterRefineLinks;
+  // Adaptive refine's threshold, 2^-bits of the emitter's exitance, 0..32:
+  // more bits, more new links (slower placements), nearer the exact first
+  // shot (kDefaultSurfaceEmitterRefineBits).
+  int emitter_refine_bits = kDefaultSurfaceEmitterRefineBits;
   // Memory (bytes) for what a new emitter's light does after its first
   // bounce, tabulated at Open over coarse pieces of every surface (one solve
   // each: ~3 s and 26 MB on the 16k-patch living room); a new emitter's
