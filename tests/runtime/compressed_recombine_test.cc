@@ -106,14 +106,15 @@ TEST(CompressedClusterTest, ScalarIsExactAndEveryVectorPathBitIdenticalOnEveryTa
           EXPECT_TRUE(std::equal(want.begin(), want.end(), vec.begin())) << "vector_path " << vector_path;
           for (size_t e = want.size(); e < vec.size(); ++e) EXPECT_EQ(vec[e], 0x5A5A5A5A);
         }
-        if (!vector_path) continue;
-        // The 16-receiver bodies leave the tail (n % 16) untouched.
+        // The 16-receiver bodies leave the tail (n % 16) untouched; the AVX2
+        // one takes negative shifts too, AVX-VNNI's only the others.
         const size_t done = size_t{n - n % 16} * 3;
         using Body = void (*)(const int16_t*, uint32_t, uint32_t, const ClusterMultipliers&, int32_t*);
         const std::pair<SimdLevel, Body> bodies[] = {{SimdLevel::kAvx2, CompressedClusterAvx2Q12},
                                                      {SimdLevel::kAvxVnni, CompressedClusterAvxVnniQ12}};
         for (const auto& [level, body] : bodies) {
           if (!CpuSupportsSimdLevel(level) || n < 16) continue;
+          if (level == SimdLevel::kAvxVnni && !vector_path) continue;
           std::vector<int32_t> vec(size_t{n} * 3, 0x5A5A5A5A);
           body(w.data(), n, r, m, vec.data());
           EXPECT_TRUE(std::equal(vec.begin(), vec.begin() + static_cast<long>(done), want.begin()))
@@ -168,6 +169,15 @@ TEST(CompressedClusterTest, EightBitWeightsGiveTheExactIntegersOnEveryPathAndTai
           CompressedClusterAvx512VnniQ12(bytes.data(), n, r, m, vec.data());
           EXPECT_TRUE(std::equal(want.begin(), want.end(), vec.begin()));
           for (size_t e = want.size(); e < vec.size(); ++e) EXPECT_EQ(vec[e], 0x5A5A5A5A);
+        }
+        // The AVX2 body at every shift, negative ones included (most of
+        // this test's): the full tiles, the tail untouched.
+        if (CpuSupportsSimdLevel(SimdLevel::kAvx2) && n >= 16) {
+          const size_t done = size_t{n - n % 16} * 3;
+          std::vector<int32_t> vec(size_t{n} * 3, 0x5A5A5A5A);
+          CompressedClusterAvx2Q12(bytes.data(), n, r, m, vec.data());
+          EXPECT_TRUE(std::equal(vec.begin(), vec.begin() + static_cast<long>(done), want.begin()));
+          for (size_t e = done; e < vec.size(); ++e) EXPECT_EQ(vec[e], 0x5A5A5A5A);
         }
       }
     }

@@ -95,15 +95,14 @@ void ClusterOnActivePath(const W* w, uint32_t n, uint32_t components, const Clus
     return;
   }
   // Negative shifts (saturating left shifts: bright clusters, mostly with
-  // 8-bit weights) take the scalar path below 512 bits.
-  if (m.shift[0] >= 0 && m.shift[1] >= 0 && m.shift[2] >= 0) {
-    if (level >= SimdLevel::kAvx2 && n >= 16) {
-      done = n - n % 16;
-      if (level == SimdLevel::kAvxVnni) {
-        CompressedClusterAvxVnniQ12(w, n, components, m, out);
-      } else {
-        CompressedClusterAvx2Q12(w, n, components, m, out);
-      }
+  // 8-bit weights) take the AVX2 body, which has them; AVX-VNNI's does not.
+  const bool left = m.shift[0] < 0 || m.shift[1] < 0 || m.shift[2] < 0;
+  if (level >= SimdLevel::kAvx2 && n >= 16) {
+    done = n - n % 16;
+    if (level == SimdLevel::kAvxVnni && !left) {
+      CompressedClusterAvxVnniQ12(w, n, components, m, out);
+    } else {
+      CompressedClusterAvx2Q12(w, n, components, m, out);
     }
   }
   // The tail (the cluster's last, short tile): same integers on the scalar path.

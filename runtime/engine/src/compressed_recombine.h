@@ -68,8 +68,8 @@ void CompressedClusterTailQ12(const int16_t* w, uint32_t from, uint32_t n, uint3
                               const ClusterMultipliers& m, int32_t* out);
 void CompressedClusterTailQ12(const int8_t* w, uint32_t from, uint32_t n, uint32_t components,
                               const ClusterMultipliers& m, int32_t* out);
-// Same, on the active vector path (recombine_dispatch.h): AVX-512 VNNI at
-// every shift, AVX-VNNI or AVX2 when every shift is >= 0.
+// Same, on the active vector path (recombine_dispatch.h): AVX-512 VNNI or
+// AVX2 at every shift, AVX-VNNI when every shift is >= 0 (else AVX2).
 void CompressedClusterQ12(const int16_t* w, uint32_t n, uint32_t components,
                           const ClusterMultipliers& m, int32_t* out);
 void CompressedClusterQ12(const int8_t* w, uint32_t n, uint32_t components,

@@ -16,6 +16,25 @@ using cpca_simd::StoreInterleaved;
 
 namespace {
 
+// Finish() for a negative shift, eight receivers: mean + acc 2^k saturated
+// to int32, k = -shift in 1..31. |acc| < 2^30 (the header's bound), so
+// acc 2^k < 2^61 and the sum fits int64 lanes; each lane is clamped to the
+// int32 range, then the low halves are gathered in receiver order.
+__attribute__((target("avx2"), always_inline)) inline __m256i Saturate32(__m256i x) {
+  const __m256i top = _mm256_set1_epi64x(INT32_MAX), bottom = _mm256_set1_epi64x(INT32_MIN);
+  x = _mm256_blendv_epi8(x, top, _mm256_cmpgt_epi64(x, top));
+  return _mm256_blendv_epi8(x, bottom, _mm256_cmpgt_epi64(bottom, x));
+}
+
+__attribute__((target("avx2"), always_inline)) inline __m256i FinishLeft(__m256i acc, __m256i mean64, __m128i k) {
+  const __m256i lo = _mm256_add_epi64(mean64, _mm256_sll_epi64(_mm256_cvtepi32_epi64(_mm256_castsi256_si128(acc)), k));
+  const __m256i hi =
+      _mm256_add_epi64(mean64, _mm256_sll_epi64(_mm256_cvtepi32_epi64(_mm256_extracti128_si256(acc, 1)), k));
+  const __m256i low_halves = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
+  return _mm256_permute2x128_si256(_mm256_permutevar8x32_epi32(Saturate32(lo), low_halves),
+                                   _mm256_permutevar8x32_epi32(Saturate32(hi), low_halves), 0x20);
+}
+
 template <typename W>
 __attribute__((target("avx2"))) void ClusterAvx2(const W* w, uint32_t n, uint32_t components,
                                                  const ClusterMultipliers& m, int32_t* out) {
@@ -27,13 +46,16 @@ __attribute__((target("avx2"))) void ClusterAvx2(const W* w, uint32_t n, uint32_
   for (int ch = 0; ch < 3; ++ch) {
     for (uint32_t p = 0; p < (components + 1) / 2; ++p) k[ch][p] = _mm256_set1_epi32(packed[ch][p]);
   }
-  __m256i half[3], mean[3];
+  __m256i half[3], mean[3], mean64[3];
   __m128i shift[3];
+  bool left[3];  // a negative shift: the sum scaled up, saturated (bright clusters)
   for (int ch = 0; ch < 3; ++ch) {
     const int s = m.shift[ch];
+    left[ch] = s < 0;
     half[ch] = _mm256_set1_epi32(s > 0 ? int32_t{1} << (s - 1) : 0);
     mean[ch] = _mm256_set1_epi32(m.mean[ch]);
-    shift[ch] = _mm_cvtsi32_si128(s);
+    mean64[ch] = _mm256_set1_epi64x(m.mean[ch]);
+    shift[ch] = _mm_cvtsi32_si128(left[ch] ? -s : s);
   }
   const uint32_t tiles = n / 16;  // full tiles (compressed_tiles.h): 16 receivers x r weights
   for (uint32_t b = 0; b < tiles; ++b) {
@@ -60,6 +82,11 @@ __attribute__((target("avx2"))) void ClusterAvx2(const W* w, uint32_t n, uint32_
     }
     __m256i first[3], second[3];  // receivers i0 + 0..7, i0 + 8..15
     for (int ch = 0; ch < 3; ++ch) {
+      if (left[ch]) {
+        first[ch] = FinishLeft(lo[ch], mean64[ch], shift[ch]);
+        second[ch] = FinishLeft(hi[ch], mean64[ch], shift[ch]);
+        continue;
+      }
       first[ch] = _mm256_add_epi32(mean[ch], _mm256_sra_epi32(_mm256_add_epi32(lo[ch], half[ch]), shift[ch]));
       second[ch] = _mm256_add_epi32(mean[ch], _mm256_sra_epi32(_mm256_add_epi32(hi[ch], half[ch]), shift[ch]));
     }
