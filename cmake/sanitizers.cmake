@@ -24,6 +24,17 @@ if(RELIGHT_FUZZ)
   add_compile_options(-fsanitize=fuzzer-no-link)
 endif()
 
+# Sources no fuzz target reaches (the baker's solvers: the baker's fuzzers
+# stop after parsing and meshing) lose the coverage instrumentation. It does
+# nothing for them but cost: the tests of the same tree spend most of their
+# time in these solvers, and with it the hierarchical Cornell bake ran 4.1x
+# slower under ASan (44.8 s against 11.0 s). They keep ASan and UBSan.
+function(relight_no_fuzz_coverage)
+  if(RELIGHT_FUZZ)
+    set_property(SOURCE ${ARGN} APPEND PROPERTY COMPILE_OPTIONS -fno-sanitize=fuzzer-no-link)
+  endif()
+endfunction()
+
 if(NOT RELIGHT_SANITIZE STREQUAL "")
   add_compile_options(-fsanitize=${RELIGHT_SANITIZE} -fno-sanitize-recover=all -fno-omit-frame-pointer)
   add_link_options(-fsanitize=${RELIGHT_SANITIZE})
