@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "relight/bake/bake.h"
+#include "relight/base/fixed_ops.h"
 #include "surface_emitter_gather_avx2.h"
 
 namespace relight {
@@ -35,6 +36,19 @@ struct EmitterMomentTable {
   // multiplies its moment sum by 2^t.
   int shift = 0;
 };
+
+// A child's exitance (or covered fraction) b, Q32, times its centre's offset
+// from its parent's, Q16 metres: its share of the parent's first moment,
+// Q32 x metres, rounded. In int64 where the product fits (every node of a
+// real bake: below 2^47 times below 2^16), else in 128 bits: the same value
+// either way. The solve's pull and adaptive refine's coverage moments both
+// use it, so an unrefined link sends the moment the gathers would have.
+inline int64_t OffsetMomentQ32(int64_t b, int64_t d_q16) {
+  constexpr int64_t kHalf = int64_t{1} << 15;
+  int64_t p = 0;
+  if (!__builtin_mul_overflow(b, d_q16, &p) && p <= INT64_MAX - kHalf) return (p + kHalf) >> 16;
+  return RoundShiftSat64(static_cast<Int128>(b) * d_q16, -16);
+}
 
 void BuildEmitterMoments(const BakeHierarchy& h, EmitterMomentTable* table);
 

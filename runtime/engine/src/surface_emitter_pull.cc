@@ -7,22 +7,10 @@
 #include <functional>
 
 #include "relight/base/fixed_ops.h"
+#include "surface_emitter_moments.h"
 #include "surface_emitter_solve.h"
 
 namespace relight {
-namespace {
-
-// RoundShiftSat64(b x d, -16), in int64 where the product fits (every node
-// of a real bake: exitance below 2^47 Q32 times a centre offset below 2^16
-// Q16 metres), else in 128 bits: the same value either way.
-inline int64_t OffsetMomentQ32(int64_t b, int64_t d_q16) {
-  constexpr int64_t kHalf = int64_t{1} << 15;
-  int64_t p = 0;
-  if (!__builtin_mul_overflow(b, d_q16, &p) && p <= INT64_MAX - kHalf) return (p + kHalf) >> 16;
-  return RoundShiftSat64(static_cast<Int128>(b) * d_q16, -16);
-}
-
-}  // namespace
 
 void HierarchySolveQ32::PullNode(uint32_t k, int64_t* b, int32_t* view, int32_t* moment) {
   const BakeHierarchy& h = *h_;

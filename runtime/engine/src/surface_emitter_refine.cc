@@ -6,7 +6,7 @@
 // g (Q8.23 per metre) x ratio (Q32) >> 23 -> Q32 per metre, as the solver's
 // gathers (surface_emitter_solve.cc). Coverage means: area (Q32.32 m^2,
 // < 2^64) x fraction (<= 2^32) summed over <= 4 children, < 2^98. Their
-// first moments: OffsetMomentQ32 below; the moment term of an unrefined
+// first moments: OffsetMomentQ32 (surface_emitter_moments.h); the moment term of an unrefined
 // send: MomentTerm (surface_emitter_refine_send.cc).
 #include "surface_emitter_refine.h"
 
@@ -17,6 +17,7 @@
 #include "relight/base/fixed_math.h"
 #include "relight/base/fixed_ops.h"
 #include "surface_emitter_frame.h"
+#include "surface_emitter_moments.h"
 #include "worker_pool.h"
 
 namespace relight {
@@ -31,15 +32,11 @@ const int32_t* CornerQ16(const BakeHierarchy& h, const BakeMesh& mesh, uint32_t 
   return &mesh.positions[3 * size_t{h.node_corners[size_t{node} * kBakeMaxNodeCorners + static_cast<size_t>(k)]}];
 }
 
-// A covered fraction (Q32, <= 2^32) times a centre offset (Q16 metres,
-// < 2^33): Q32 x metres, rounded; < 2^65 before the shift, so in 128 bits.
-// A real first moment is below 2^49 (a fraction of 1 times half a 32 km
+// Coverage moments: a covered fraction (Q32, <= 2^32) times a centre offset
+// (OffsetMomentQ32, surface_emitter_moments.h). A real first moment is below 2^49 (a fraction of 1 times half a 32 km
 // node); kMomentLimit bounds what a hostile bake could make of it, so a
 // child's area (< 2^64) times it, over <= 4 children, stays below 2^117.
 constexpr int64_t kMomentLimit = int64_t{1} << 50;
-int64_t OffsetMomentQ32(int64_t b, int64_t d_q16) {
-  return RoundShiftSat64(static_cast<Int128>(b) * d_q16, -16);
-}
 
 int64_t GradientTerm(int64_t gu, int64_t gv, const int32_t* uv_q16) {
   return RoundShiftSat64(static_cast<Int128>(gu) * uv_q16[0] + static_cast<Int128>(gv) * uv_q16[1], -16);
