@@ -90,7 +90,12 @@ TEST(SurfaceEmitterIncremental, MoveThereAndBackIsBitIdentical) {
 
 // A drag (10 cm steps, each solved from the last) against the same final
 // place solved from nothing.
-TEST(SurfaceEmitterIncremental, MoveSolvedFromThePreviousMatchesASolveFromNothing) {
+void ExpectMoveSolvedFromThePreviousMatchesASolveFromNothing(SurfaceEmitterMethod method) {
+  const auto Ceiling = [method](double dx, double dy) {
+    SurfaceEmitterShape shape = testing::Ceiling(dx, dy);
+    shape.method = method;
+    return shape;
+  };
   // From nothing: without the later-bounce table (surface_emitter_bounces.h),
   // whose start would make the place itself nearly a warm start.
   EngineOptions from_nothing;
@@ -116,7 +121,15 @@ TEST(SurfaceEmitterIncremental, MoveSolvedFromThePreviousMatchesASolveFromNothin
   EXPECT_LE(max_rel, 1e-3);
   EXPECT_LE(mean_rel, 1e-4);
   EXPECT_LT(sweeps_moved, sweeps_placed);
-  RecordProperty("dragged_vs_placed_max_over_peak", std::to_string(max_rel));
+  ::testing::Test::RecordProperty("dragged_vs_placed_max_over_peak", std::to_string(max_rel));
+}
+
+TEST(SurfaceEmitterIncremental, MoveSolvedFromThePreviousMatchesASolveFromNothing) {
+  ExpectMoveSolvedFromThePreviousMatchesASolveFromNothing(SurfaceEmitterMethod::kFractionalEmissivity);
+}
+
+TEST(SurfaceEmitterIncremental, AnAdaptiveRefineMoveSolvedFromThePreviousMatchesASolveFromNothing) {
+  ExpectMoveSolvedFromThePreviousMatchesASolveFromNothing(SurfaceEmitterMethod::kAdaptiveRefine);
 }
 
 // A longer drag, as a panel is dragged: after a move that took two sweeps the
@@ -124,7 +137,12 @@ TEST(SurfaceEmitterIncremental, MoveSolvedFromThePreviousMatchesASolveFromNothin
 // hint, surface_emitter_solve.h SweepContraction). Every place the drag
 // passes and where it ends agree with solves from nothing to the same bars as
 // above, and some moves took one sweep.
-TEST(SurfaceEmitterIncremental, ADragStopsAfterOneSweepWhereTheLastMoveSaysItMay) {
+void ExpectADragStopsAfterOneSweepWhereTheLastMoveSaysItMay(SurfaceEmitterMethod method) {
+  const auto Ceiling = [method](double dx, double dy) {
+    SurfaceEmitterShape shape = testing::Ceiling(dx, dy);
+    shape.method = method;
+    return shape;
+  };
   // From nothing: without the later-bounce table (surface_emitter_bounces.h),
   // whose start would make the place itself nearly a warm start.
   EngineOptions from_nothing;
@@ -172,6 +190,14 @@ TEST(SurfaceEmitterIncremental, ADragStopsAfterOneSweepWhereTheLastMoveSaysItMay
   EXPECT_LE(most, 3);
   EXPECT_LE(worst_max, 1e-3);
   EXPECT_LE(worst_mean, 1e-4);
+}
+
+TEST(SurfaceEmitterIncremental, ADragStopsAfterOneSweepWhereTheLastMoveSaysItMay) {
+  ExpectADragStopsAfterOneSweepWhereTheLastMoveSaysItMay(SurfaceEmitterMethod::kFractionalEmissivity);
+}
+
+TEST(SurfaceEmitterIncremental, AnAdaptiveRefineDragStopsAfterOneSweepWhereTheLastMoveSaysItMay) {
+  ExpectADragStopsAfterOneSweepWhereTheLastMoveSaysItMay(SurfaceEmitterMethod::kAdaptiveRefine);
 }
 
 // A move's set-up pulls only the changed leaves' ancestors when the solver

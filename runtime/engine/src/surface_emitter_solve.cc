@@ -247,6 +247,10 @@ void HierarchySolveQ32::ReflectedStart(const int64_t* e, int64_t* b) const {
     }
 }
 
+int64_t HierarchySolveQ32::ReflectedChange(uint32_t k, int ch, int64_t shot_now, int64_t shot_before) const {
+  return RoundShiftSat64(static_cast<Int128>(rho_q32_[3 * size_t{k} + ch]) * SubSat64(shot_now, shot_before), -32);
+}
+
 void HierarchySolveQ32::EmittedAndReflectedStart(const int64_t* emitted, const int64_t* shot, int64_t* b) const {
   const BakeHierarchy& h = *h_;
   for (uint32_t k = 0; k < node_count(); ++k)

@@ -101,6 +101,10 @@ class HierarchySolveQ32 {
   // its first shot is known (adaptive refine), so the sweeps start one
   // bounce ahead of zeros.
   void ReflectedStart(const int64_t* irradiance_q32, int64_t* exitance_q32) const;
+  // rho x (shot_now - shot_before) at leaf k, channel ch, Q32 (saturated):
+  // an adaptive-refine move's change of first bounce, known before any
+  // sweep, so its warm start can take it in.
+  int64_t ReflectedChange(uint32_t k, int ch, int64_t shot_now, int64_t shot_before) const;
   // exitance_q32 = emitted_q32 + rho x shot_q32 on the leaves (both per
   // node, the same in every channel), 0 on the inner nodes: a new FE light's
   // start, its emission and its first bounce. The same bits as

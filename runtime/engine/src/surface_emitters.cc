@@ -150,11 +150,26 @@ void SurfaceEmitters::StartFrom(const Slot& s, int64_t* b, bool* warm) {
         const int64_t emitted = s.now.refined ? 0 : now[k];
         b[i] = h.leaf(k) ? AddSat64(s.before.exitance_q32[i], emitted - before[k]) : s.before.exitance_q32[i];
       }
+    // An adaptive-refine move from an adaptive-refine solution also knows
+    // how its first bounce changed (the two first shots), so the start
+    // takes that in too: the first sweep's change is then the later bounces'
+    // alone and the sweeps stop sooner (the paper's room: see
+    // docs/hierarchy.md "AR moves start one bounce ahead").
+    const bool shots = s.now.refined && s.before.refined;
     // The leaves whose start differs from the previous solution, for the
     // solver's StartNear.
     changed_count_ = 0;
-    for (uint32_t k = 0; k < n; ++k)
-      if (h.leaf(k) && (s.now.refined ? 0 : now[k]) != before[k]) changed_leaves_[changed_count_++] = k;
+    for (uint32_t k = 0; k < n; ++k) {
+      if (!h.leaf(k)) continue;
+      bool changed = (s.now.refined ? 0 : now[k]) != before[k];
+      if (shots && s.now.first_shot_q32[k] != s.before.first_shot_q32[k]) {
+        for (int c = 0; c < 3; ++c)
+          b[3 * size_t{k} + c] = AddSat64(
+              b[3 * size_t{k} + c], solver_.ReflectedChange(k, c, s.now.first_shot_q32[k], s.before.first_shot_q32[k]));
+        changed = true;
+      }
+      if (changed) changed_leaves_[changed_count_++] = k;
+    }
     return;
   }
   for (uint32_t k = 0; k < n; ++k)  // the solver pulls the inner nodes up
