@@ -100,7 +100,6 @@ Status SurfaceEmitters::Place(int slot, const SurfaceEmitterShape& shape, Worker
   s.now.root = surface_root_[surface];
   if (refined) s.now.first_shot_q32.swap(first_shot_scratch_);
   s.now.refined = refined;
-  s.now.fe_shot = false;
   s.now.solved = false;
   return Status::Ok();
 }
@@ -151,13 +150,12 @@ void SurfaceEmitters::StartFrom(const Slot& s, int64_t* b, bool* warm) {
         const int64_t emitted = s.now.refined ? 0 : now[k];
         b[i] = h.leaf(k) ? AddSat64(s.before.exitance_q32[i], emitted - before[k]) : s.before.exitance_q32[i];
       }
-    // A move whose first shot is known at both ends (adaptive refine's
-    // direct light, or FE's shot through the stored links) also knows how
-    // its first bounce changed, so the start takes that in too: the first
-    // sweep's change is then the later bounces' alone and the sweeps stop
-    // sooner (docs/hierarchy.md "Moves start one bounce ahead").
-    const bool shots = (s.now.refined && s.before.refined) ||
-                       (!s.now.refined && !s.before.refined && s.now.fe_shot && s.before.fe_shot);
+    // An adaptive-refine move from an adaptive-refine solution also knows
+    // how its first bounce changed (the two first shots), so the start
+    // takes that in too: the first sweep's change is then the later bounces'
+    // alone and the sweeps stop sooner (the paper's room: see
+    // docs/hierarchy.md "AR moves start one bounce ahead").
+    const bool shots = s.now.refined && s.before.refined;
     // The leaves whose start differs from the previous solution, for the
     // solver's StartNear.
     changed_count_ = 0;
@@ -189,11 +187,6 @@ int SurfaceEmitters::SolvePending(WorkerPool* pool) {
     }
     s.restored = false;
     if (!s.placed || s.now.solved) continue;
-    // An FE move from a solution whose FE shot is known: the new shot too,
-    // for the start (StartFrom).
-    if (!s.now.refined && s.moved && s.before.solved && s.before.fe_shot && s.now.root != kBakeNoIndex)
-      s.now.fe_shot =
-          refine_.FractionalFirstShot(s.now.root, s.now.coverage_q32.data(), s.now.first_shot_q32.data(), pool).ok();
     bool warm = false;
     StartFrom(s, s.now.exitance_q32.data(), &warm);
     last_warm_ += warm ? 1 : 0;
@@ -225,8 +218,6 @@ int SurfaceEmitters::SolvePending(WorkerPool* pool) {
         solver_.StartNear(s.before.exitance_q32.data(), changed_leaves_.data(), changed_count_);
       } else if (FirstBounceStart(s.now.root, s.now.coverage_q32.data(), s.now.exitance_q32.data(), pool)) {
         hint = bounces_.AddTo(s.now.coverage_q32.data(), s.now.root, s.now.exitance_q32.data());
-        s.now.first_shot_q32.swap(first_shot_scratch_);  // the shot, for the next move's start
-        s.now.fe_shot = true;
       }
       last_sweeps_ += solver_.SolveRgb(s.now.coverage_q32.data(), nullptr, s.now.exitance_q32.data(), pool, 0,
                                        hint, seen);

@@ -87,10 +87,7 @@ class SurfaceEmitters {
     std::vector<int64_t> exitance_q32;  // 3 per node, per unit luminance
     std::vector<int32_t> unit_q24;      // 3 per vertex
     bool refined = false;               // adaptive refine: first_shot_q32 holds its direct light
-    std::vector<int64_t> first_shot_q32;  // per node (leaves): AR's direct light, or FE's when fe_shot
-    // first_shot_q32 holds FE's first shot through the stored links (made
-    // for a new light's start or a move's): the next move's start uses it.
-    bool fe_shot = false;
+    std::vector<int64_t> first_shot_q32;  // per node (leaves), AR only
     uint32_t root = kBakeNoIndex;       // the emitter's surface's tree
     // exitance_q32 of an AR solution includes the emitter's own exitance
     // (coverage), added after the solve.
