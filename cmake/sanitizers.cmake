@@ -34,6 +34,12 @@ function(relight_no_fuzz_coverage)
     set_property(SOURCE ${ARGN} APPEND PROPERTY COMPILE_OPTIONS -fno-sanitize=fuzzer-no-link)
   endif()
 endfunction()
+# The same for whole targets (every test binary: a test is no fuzz target).
+function(relight_no_fuzz_coverage_target target)
+  if(RELIGHT_FUZZ)
+    target_compile_options(${target} PRIVATE -fno-sanitize=fuzzer-no-link)
+  endif()
+endfunction()
 
 if(NOT RELIGHT_SANITIZE STREQUAL "")
   add_compile_options(-fsanitize=${RELIGHT_SANITIZE} -fno-sanitize-recover=all -fno-omit-frame-pointer)
