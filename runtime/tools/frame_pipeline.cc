@@ -25,8 +25,12 @@ Status FramePipeline::WarmUp(int width, int height) {
   frame_.SetCamera(CameraView{});
   const uint8_t rgb[9] = {200, 40, 40, 40, 200, 40, 40, 40, 200};
   std::vector<uint8_t> pixels(static_cast<size_t>(width) * height * 3);
-  for (int draw = 0; draw < 2; ++draw) RELIGHT_RETURN_IF_ERROR(frame_.Draw(rgb, pixels.data()));
-  return Status::Ok();
+  // The colour pass (which frames take when a camera shows more triangles
+  // than the resolve names), then the ID pass (which the resolve takes).
+  frame_.SetStillCameraResolve(false);
+  RELIGHT_RETURN_IF_ERROR(frame_.Draw(rgb, pixels.data()));
+  frame_.SetStillCameraResolve(true);
+  return frame_.Draw(rgb, pixels.data());
 }
 
 Status FramePipeline::Init(const Engine& engine, int width, int height, const CameraView& view, int32_t white_q12) {

@@ -19,8 +19,8 @@ CameraView CameraFromBake(const BakeCamera& camera);
 class FramePipeline {
  public:
   // Has llvmpipe compile every shader the frames use, before any bake is
-  // read: a stand-in triangle drawn as the frames draw (the colour pass, then
-  // the ID pass and the culled colour pass). Init at the same size keeps
+  // read: a stand-in triangle drawn as the frames draw (the colour pass, and
+  // the ID pass the still-camera resolve takes instead). Init at the same size keeps
   // this context, so the frames compile nothing more, and the compiler's
   // pages can go back to the kernel before the bake comes in
   // (render/compiler_pages.h). Errors as Init's.
@@ -33,8 +33,10 @@ class FramePipeline {
   // The last Render's parts, microseconds: Engine::Update, then tone map + draw.
   int64_t last_update_us() const { return last_update_us_; }
   int64_t last_draw_us() const { return last_draw_us_; }
-  // Triangles the last draw sent (all, or those the camera shows: OsMesaFrame).
+  // Triangles the last draw showed (all, or those the camera shows: OsMesaFrame).
   uint32_t last_drawn_triangles() const { return frame_.last_drawn_triangles(); }
+  // Whether the last draw was the still-camera resolve (OsMesaFrame).
+  bool last_draw_resolved() const { return frame_.last_draw_resolved(); }
 
   const uint8_t* pixels() const { return pixels_.data(); }
   int width() const { return frame_.width(); }

@@ -64,6 +64,7 @@ TEST(OsMesaSceneChunks, EveryTriangleOfAChunkedDrawIsDrawn) {
   ASSERT_TRUE(chunked.Init(kW, kH, mesh).ok());
   ASSERT_TRUE(culled.Init(kW, kH, mesh).ok());
   chunked.SetHiddenTriangleCulling(false);
+  culled.SetStillCameraResolve(false);  // llvmpipe's pixels on both sides
   chunked.SetCamera(view);
   culled.SetCamera(view);
   std::vector<uint8_t> a(static_cast<size_t>(kW) * kH * 3), b(a.size());

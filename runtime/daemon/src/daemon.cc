@@ -397,6 +397,7 @@ Status Daemon::Run(const std::atomic<bool>& stop, std::atomic<bool>& reload) {
       m.stats.update_times.Add(m.pipeline.last_update_us());
       m.stats.draw_times.Add(m.pipeline.last_draw_us());
       m.stats.drawn_triangles = m.pipeline.last_drawn_triangles();
+      m.stats.draw_resolved = m.pipeline.last_draw_resolved();
       m.stats.mesh_triangles = m.engine.bake().mesh.triangle_count();
     }
     RELIGHT_RETURN_IF_ERROR(m.WriteSinks(frame));

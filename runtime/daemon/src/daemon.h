@@ -96,9 +96,11 @@ struct DaemonStats {
   int64_t render_us_total = 0, render_us_max = 0;  // over the renders
   // Per render: the whole (= FrameInfo::render_us), Engine::Update, tone map + draw.
   DurationHistogram render_times, update_times, draw_times;
-  // The last render's triangles sent to llvmpipe, of the mesh's (hidden-
-  // triangle culling: OsMesaFrame::SetHiddenTriangleCulling).
+  // The last render's triangles shown, of the mesh's (hidden-triangle
+  // culling: OsMesaFrame::SetHiddenTriangleCulling), and whether that frame
+  // came from the still camera's pixel table rather than llvmpipe.
   uint32_t drawn_triangles = 0, mesh_triangles = 0;
+  bool draw_resolved = false;
   uint32_t last_latency_us = 0;
   int64_t changes_applied = 0;
   int reloads = 0, reload_failures = 0;

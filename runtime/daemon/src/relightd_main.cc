@@ -199,8 +199,9 @@ int main(int argc, char** argv) {
                  ms(stats.update_times.QuantileUs(990)), ms(stats.draw_times.QuantileUs(500)),
                  ms(stats.draw_times.QuantileUs(990)));
     relight::Log(relight::LogLevel::kInfo,
-                 "relightd: the last frame drew %u of the mesh's %u triangles (the rest hidden at its camera)",
-                 stats.drawn_triangles, stats.mesh_triangles);
+                 "relightd: the last frame drew %u of the mesh's %u triangles (the rest hidden at its camera)%s",
+                 stats.drawn_triangles, stats.mesh_triangles,
+                 stats.draw_resolved ? ", resolved from the still camera's pixel table" : ", rasterised by llvmpipe");
   }
   const long rss_kb = relight::ProcStatusKb("VmRSS"), peak_kb = relight::ProcStatusKb("VmHWM");
   if (rss_kb > 0 && peak_kb > 0) {

@@ -1,6 +1,8 @@
 // OSMesa (Mesa llvmpipe) renderer. The legacy fixed-function pipeline is all
 // we need: vertex colours are already tone-mapped sRGB, so lighting is off and
-// GL does no gamma work; GL_SMOOTH gives Gouraud shading.
+// GL does no gamma work; GL_SMOOTH gives Gouraud shading. At a still camera,
+// from its second frame on, the pixels come from the ID pass's table instead
+// (pixel_resolve.h), and llvmpipe draws again only when the camera moves.
 //
 // llvmpipe rasterises on LP_NUM_THREADS threads (default: one per CPU). We
 // leave the environment alone; set it outside the process to share cores.
@@ -14,8 +16,10 @@
 #include <cstddef>
 #include <cstring>
 #include <limits>
+#include <utility>
 
 #include "camera.h"
+#include "pixel_resolve.h"
 #include "rgba_rows.h"
 #include "scene_chunks.h"
 #include "visible_triangles.h"
@@ -27,7 +31,8 @@ constexpr int kMaxSide = 16384;  // llvmpipe's largest framebuffer side
 // The ID pass stores triangle index + 1 in 24 bits of RGB; 0 is background.
 constexpr uint32_t kMaxTriangles = 0xFFFFFEu;
 constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
-constexpr float kBackgroundGrey = 32.0f / 255.0f;  // dark grey
+constexpr uint8_t kBackgroundLevel = 32;  // dark grey
+constexpr float kBackgroundGrey = kBackgroundLevel / 255.0f;
 
 const char* GlErrorName(GLenum e) {
   switch (e) {
@@ -83,6 +88,18 @@ struct OsMesaFrame::Impl {
   int draws_at_camera = 0;
   uint32_t last_drawn_triangles = 0;
 
+  // The still camera's resolve (pixel_resolve.h): the same ID pass, turned
+  // in place into a table of slot and weights per pixel, after which frames
+  // at that camera skip llvmpipe. color_rgba holds the table while
+  // table_valid; any GL draw into it ends that.
+  std::vector<float> positions_m;        // what llvmpipe draws, 3 per vertex
+  std::vector<uint16_t> slot_of_triangle;
+  std::vector<uint64_t> slot_colours;    // per frame: 3 spread colours per shown triangle
+  bool resolve = true;
+  bool table_valid = false;
+  bool table_refused = false;  // this camera shows more triangles than a table names
+  bool last_resolved = false;
+
   CameraView view;
   render::CameraFrame camera;
   render::CameraFrame drawn_camera;  // the camera of the last draw (for unprojection)
@@ -96,6 +113,9 @@ struct OsMesaFrame::Impl {
     draws_at_camera = 0;
     last_drawn_triangles = 0;
     has_drawn = false;
+    table_valid = false;
+    table_refused = false;
+    last_resolved = false;
   }
 
   void Release() {
@@ -145,6 +165,7 @@ struct OsMesaFrame::Impl {
   Status Finish(const char* pass);
   Status DrawIdPass();
   Status FindVisibleTriangles();
+  void BuildTable();
 };
 
 Status OsMesaFrame::Impl::Upload(const BakeMesh& mesh) {
@@ -205,6 +226,9 @@ Status OsMesaFrame::Impl::Upload(const BakeMesh& mesh) {
   triangles = mesh.triangles;
   visible_indices.assign(mesh.triangles.size(), 0);
   triangle_seen.assign(triangle_count, 0);
+  slot_of_triangle.assign(triangle_count, 0);
+  slot_colours.assign(size_t{3} * std::min(triangle_count, render::kResolveMaxSlots), 0);
+  positions_m = std::move(pos);
   return CheckGl("uploading the mesh");
 }
 
@@ -220,6 +244,7 @@ Status OsMesaFrame::Impl::Finish(const char* pass) {
 // Draws every triangle in its ID colour (flat: exact codes); color_rgba then
 // holds the codes, bottom row first.
 Status OsMesaFrame::Impl::DrawIdPass() {
+  table_valid = false;  // the pass draws over the table
   LoadMatrices();
   glShadeModel(GL_FLAT);
   glClearColor(0, 0, 0, 0);
@@ -248,6 +273,20 @@ Status OsMesaFrame::Impl::FindVisibleTriangles() {
   RELIGHT_RETURN_IF_ERROR(CheckGl("uploading the visible triangles"));
   visible_valid = true;
   return Status::Ok();
+}
+
+// From the ID pass in color_rgba, right after FindVisibleTriangles: the
+// resolve's table, in place.
+void OsMesaFrame::Impl::BuildTable() {
+  table_valid = false;
+  if (!resolve || visible_count > render::kResolveMaxSlots) {
+    table_refused = resolve;
+    return;
+  }
+  render::NumberShownTriangles(triangle_seen.data(), triangle_count, slot_of_triangle.data());
+  render::BuildPixelTable(camera, width, height, positions_m.data(), triangles.data(), slot_of_triangle.data(),
+                          triangle_count, color_rgba.data());
+  table_valid = true;
 }
 
 OsMesaFrame::OsMesaFrame() : impl_(new Impl) {}
@@ -353,10 +392,19 @@ void OsMesaFrame::SetCamera(const CameraView& camera) {
   if (!same) {
     m.visible_valid = false;
     m.draws_at_camera = 0;
+    m.table_valid = false;
+    m.table_refused = false;
   }
 }
 
 void OsMesaFrame::SetHiddenTriangleCulling(bool on) { impl_->cull_hidden = on; }
+
+void OsMesaFrame::SetStillCameraResolve(bool on) {
+  impl_->resolve = on;
+  if (!on) impl_->table_refused = false;
+}
+
+bool OsMesaFrame::last_draw_resolved() const { return impl_->last_resolved; }
 
 uint32_t OsMesaFrame::last_drawn_triangles() const { return impl_->last_drawn_triangles; }
 
@@ -366,10 +414,28 @@ Status OsMesaFrame::Draw(const uint8_t* vertex_rgb8, uint8_t* out_rgb8) {
     return Status(StatusCode::kInvalidArgument, "render: Draw: null buffer");
   }
   RELIGHT_RETURN_IF_ERROR(m.MakeCurrent());
-  if (m.cull_hidden && !m.visible_valid && m.draws_at_camera >= 1 && m.triangle_count > 0) {
+  // The resolve builds on the culling's list, so it runs only with it. With
+  // it, the first draw at a camera is already the ID pass and a resolved
+  // frame, so a look's pixels do not depend on how long the camera has been
+  // still; without it, the culling's ID pass waits for the second draw (a
+  // camera that moves every frame never pays for one).
+  const bool want_table = m.cull_hidden && m.resolve;
+  if (m.cull_hidden && m.triangle_count > 0 && (want_table || m.draws_at_camera >= 1) &&
+      (!m.visible_valid || (want_table && !m.table_valid && !m.table_refused))) {
     RELIGHT_RETURN_IF_ERROR(m.DrawIdPass());
     RELIGHT_RETURN_IF_ERROR(m.FindVisibleTriangles());
+    m.BuildTable();
   }
+  if (want_table && m.table_valid) {
+    render::GatherSlotColours(m.visible_indices.data(), m.visible_count, vertex_rgb8, m.slot_colours.data());
+    render::ResolvePixels(m.color_rgba.data(), m.width, m.height, m.slot_colours.data(), kBackgroundLevel,
+                          out_rgb8);
+    m.last_drawn_triangles = m.visible_count;
+    m.last_resolved = true;
+    return Status::Ok();
+  }
+  m.table_valid = false;  // llvmpipe draws over it
+  m.last_resolved = false;
   const bool culled = m.cull_hidden && m.visible_valid;
   const uint32_t drawn = culled ? m.visible_count : m.triangle_count;
   m.LoadMatrices();
@@ -414,8 +480,12 @@ Status OsMesaFrame::DrawTriangleIds(uint32_t* out_ids) {
       dst[x] = code == 0 ? kNoTriangle : code - 1;
     }
   }
-  // The pass is the culling's ID pass too: keep its list for this camera.
-  if (m.cull_hidden && m.triangle_count > 0) return m.FindVisibleTriangles();
+  // The pass is the culling's and the resolve's ID pass too: keep its list
+  // and table for this camera.
+  if (m.cull_hidden && m.triangle_count > 0) {
+    RELIGHT_RETURN_IF_ERROR(m.FindVisibleTriangles());
+    m.BuildTable();
+  }
   return Status::Ok();
 }
 

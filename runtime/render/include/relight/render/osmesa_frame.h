@@ -44,8 +44,19 @@ class OsMesaFrame {
   // unchanged camera on, only the triangles an ID pass found shown there are
   // drawn; the frames are bit-identical either way (src/visible_triangles.h).
   void SetHiddenTriangleCulling(bool on);
-  // Triangles the last Draw sent to llvmpipe (all of them, or the shown ones).
+  // Still-camera resolve, on by default, with the culling: at the first Draw
+  // at a camera an ID pass finds the shown triangles and keeps, per pixel,
+  // its triangle and the weights of its vertices; that Draw and the later
+  // ones at that camera compute each pixel from those and the vertex colours
+  // instead of running llvmpipe's colour pass (src/pixel_resolve.h). Within
+  // about one level of the rasterised pixel. A camera showing more than
+  // 65 535 triangles gets the culled colour pass instead.
+  void SetStillCameraResolve(bool on);
+  // Triangles the last Draw showed: all of them, or the shown ones (drawn by
+  // llvmpipe or resolved).
   uint32_t last_drawn_triangles() const;
+  // Whether the last Draw came from the resolve's table rather than llvmpipe.
+  bool last_draw_resolved() const;
   // World point (metres) under pixel (x, y), from the depth buffer of the last
   // draw; kNotFound where the pixel shows background.
   Status UnprojectPixel(int x, int y, float out_world[3]);
