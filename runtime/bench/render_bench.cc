@@ -78,6 +78,7 @@ void DrawAtStillCamera(benchmark::State& state, bool resolve) {
     return;
   }
   frame.SetStillCameraResolve(resolve);
+  frame.SetResolveThreads(static_cast<int>(state.range(0)));
   frame.SetCamera(g_scene->view);
   std::vector<uint8_t> rgb(static_cast<size_t>(g_scene->mesh.vertex_count()) * 3);
   std::vector<uint8_t> pixels(static_cast<size_t>(g_width) * g_height * 3);
@@ -140,8 +141,9 @@ void BM_NewCameraResolved(benchmark::State& state) { DrawsAtANewCamera(state, tr
 
 }  // namespace
 
-BENCHMARK(BM_DrawRasterised)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_DrawResolved)->Unit(benchmark::kMillisecond)->UseRealTime();
+// Arg: the resolve's threads (llvmpipe's are its own: LP_NUM_THREADS).
+BENCHMARK(BM_DrawRasterised)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DrawResolved)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_NewCameraRasterised)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_NewCameraResolved)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -37,6 +37,9 @@ Status FramePipeline::Init(const Engine& engine, int width, int height, const Ca
   BuildToneMap(white_q12 > 0 ? white_q12 : engine.bake().white_luminance, &tone_map_);
   RELIGHT_RETURN_IF_ERROR(frame_.Init(width, height, engine.bake().mesh));
   frame_.SetCamera(view);
+  // The engine's threads wait while the frame is drawn: the resolve takes
+  // as many (relightd --threads).
+  frame_.SetResolveThreads(engine.thread_count());
   vertex_rgb_.assign(static_cast<size_t>(engine.vertex_count()) * 3, 0);
   pixels_.assign(static_cast<size_t>(width) * height * 3, 0);
   return Status::Ok();

@@ -716,6 +716,33 @@ TEST(OsMesaFrameTest, StillCameraResolveMatchesTheRasterisedFrameWithinALevel) {
   compare("turned on again");
 }
 
+// The resolve's rows split over 2 and 3 threads give one thread's frame, byte
+// for byte, at an odd height (uneven splits), from three places in the room.
+TEST(OsMesaFrameTest, TheResolveSplitOverThreadsWritesTheSameFrame) {
+  const BakeMesh mesh = RoomMesh(6, 4, 3, 0.2);
+  constexpr int kFrameW = 317, kFrameH = 203;
+  OsMesaFrame one, split;
+  ASSERT_TRUE(one.Init(kFrameW, kFrameH, mesh).ok());
+  ASSERT_TRUE(split.Init(kFrameW, kFrameH, mesh).ok());
+  std::vector<uint8_t> colours(static_cast<size_t>(mesh.vertex_count()) * 3);
+  std::mt19937 rng(31);
+  std::vector<uint8_t> a(static_cast<size_t>(kFrameW) * kFrameH * 3), b(a.size());
+  const float places[3][6] = {{0.5f, 0.5f, 1.6f, 5, 3, 0.8f}, {5.5f, 3.5f, 2.5f, 2.8f, 1.8f, 0.3f},
+                              {3.0f, 2.0f, 2.9f, 3.0f, 2.0f, 0.0f}};
+  for (int threads : {2, 3, 1, 2}) {
+    split.SetResolveThreads(threads);
+    for (const auto& p : places) {
+      one.SetCamera(ViewFrom(p, 60));
+      split.SetCamera(ViewFrom(p, 60));
+      for (uint8_t& c : colours) c = static_cast<uint8_t>(rng() % 256);
+      ASSERT_TRUE(one.Draw(colours.data(), a.data()).ok());
+      ASSERT_TRUE(split.Draw(colours.data(), b.data()).ok());
+      ASSERT_TRUE(split.last_draw_resolved());
+      ASSERT_EQ(a, b) << threads << " threads, camera at " << p[0] << ", " << p[1];
+    }
+  }
+}
+
 // A camera that shows more triangles than a table can name (65 535) keeps
 // llvmpipe's culled draw, with its exact pixels, and no ID pass per frame.
 TEST(OsMesaFrameTest, ACameraShowingMoreTrianglesThanATableNamesIsRasterised) {

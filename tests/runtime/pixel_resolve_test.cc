@@ -94,7 +94,8 @@ TEST(PixelResolve, AFrameIsEachPixelsWeightedVertexColoursTopRowFirst) {
 
 // The AVX2 body against the scalar one: random tables (a fifth of the
 // pixels background, weights anywhere in range) at widths around its
-// four-pixel step, every byte the same, nothing written past the frame.
+// four-pixel step, every byte the same, nothing written past the frame; and
+// a row range writes its rows' bytes and nothing else (threads share frames).
 TEST(PixelResolve, TheAvx2BodyWritesTheScalarBodysBytes) {
   std::mt19937 rng(9);
   constexpr uint32_t kSlots = 300;
@@ -116,13 +117,27 @@ TEST(PixelResolve, TheAvx2BodyWritesTheScalarBodysBytes) {
       constexpr size_t kGuard = 16;
       const size_t bytes = static_cast<size_t>(width) * height * 3;
       std::vector<uint8_t> scalar(bytes + kGuard, 0xA5), avx2(bytes + kGuard, 0xA5);
-      ASSERT_TRUE(ResolvePixelsWith(ResolveBody::kScalar, table.data(), width, height, colours.data(), 32,
-                                    scalar.data()));
-      if (!ResolvePixelsWith(ResolveBody::kAvx2, table.data(), width, height, colours.data(), 32, avx2.data())) {
+      ASSERT_TRUE(ResolveRowsWith(ResolveBody::kScalar, table.data(), width, height, 0, height, colours.data(), 32,
+                                  scalar.data()));
+      if (!ResolveRowsWith(ResolveBody::kAvx2, table.data(), width, height, 0, height, colours.data(), 32,
+                           avx2.data())) {
         GTEST_SKIP() << "no AVX2 on this CPU or target: the scalar body is the only one";
       }
       ASSERT_EQ(scalar, avx2) << width << " x " << height;
       for (size_t i = bytes; i < bytes + kGuard; ++i) ASSERT_EQ(avx2[i], 0xA5) << "written past the frame";
+      // Each row on its own, into a frame where every other row is a guard:
+      // the same bytes, and nothing written outside the row.
+      for (ResolveBody body : {ResolveBody::kScalar, ResolveBody::kBest}) {
+        for (int y = 0; y < height; ++y) {
+          std::vector<uint8_t> one(bytes + kGuard, 0xA5);
+          ASSERT_TRUE(ResolveRowsWith(body, table.data(), width, height, y, y + 1, colours.data(), 32, one.data()));
+          const size_t row_bytes = static_cast<size_t>(width) * 3;
+          for (size_t i = 0; i < one.size(); ++i) {
+            const bool in_row = i / row_bytes == static_cast<size_t>(y) && i < bytes;
+            ASSERT_EQ(one[i], in_row ? scalar[i] : 0xA5) << width << " x " << height << ", row " << y << ", byte " << i;
+          }
+        }
+      }
       ++compared;
     }
   }

@@ -15,7 +15,7 @@
 #include "mix.h"
 #include "relight/bake/bake.h"
 #include "remix.h"
-#include "worker_pool.h"
+#include "relight/base/worker_pool.h"
 
 namespace relight {
 

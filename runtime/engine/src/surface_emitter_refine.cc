@@ -18,7 +18,7 @@
 #include "relight/base/fixed_ops.h"
 #include "surface_emitter_frame.h"
 #include "surface_emitter_moments.h"
-#include "worker_pool.h"
+#include "relight/base/worker_pool.h"
 
 namespace relight {
 namespace {

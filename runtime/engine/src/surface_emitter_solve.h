@@ -30,7 +30,7 @@
 #include "surface_emitter_extrapolate.h"
 #include "surface_emitter_gather_avx2.h"
 #include "surface_emitter_moments.h"
-#include "worker_pool.h"
+#include "relight/base/worker_pool.h"
 
 namespace relight {
 

@@ -26,7 +26,7 @@
 #include "surface_emitter_refine.h"
 #include "surface_emitter_solve.h"
 #include "surface_emitter_vertices.h"
-#include "worker_pool.h"
+#include "relight/base/worker_pool.h"
 
 namespace relight {
 

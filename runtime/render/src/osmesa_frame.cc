@@ -19,6 +19,7 @@
 #include <utility>
 
 #include "camera.h"
+#include "relight/base/worker_pool.h"
 #include "pixel_resolve.h"
 #include "rgba_rows.h"
 #include "scene_chunks.h"
@@ -99,6 +100,7 @@ struct OsMesaFrame::Impl {
   bool table_valid = false;
   bool table_refused = false;  // this camera shows more triangles than a table names
   bool last_resolved = false;
+  std::unique_ptr<WorkerPool> resolve_pool;  // SetResolveThreads > 1: the rows split over it
 
   CameraView view;
   render::CameraFrame camera;
@@ -166,7 +168,33 @@ struct OsMesaFrame::Impl {
   Status DrawIdPass();
   Status FindVisibleTriangles();
   void BuildTable();
+  void Resolve(const uint8_t* vertex_rgb8, uint8_t* out_rgb8);
 };
+
+// From the table and this frame's slot colours, the frame's rows split
+// evenly over the pool (the same bytes however they are split).
+void OsMesaFrame::Impl::Resolve(const uint8_t* vertex_rgb8, uint8_t* out_rgb8) {
+  render::GatherSlotColours(visible_indices.data(), visible_count, vertex_rgb8, slot_colours.data());
+  if (resolve_pool == nullptr) {
+    render::ResolvePixels(color_rgba.data(), width, height, slot_colours.data(), kBackgroundLevel, out_rgb8);
+    return;
+  }
+  struct ResolveJob {
+    const Impl* frame;
+    uint8_t* out;
+    int threads;
+  };
+  ResolveJob job{this, out_rgb8, resolve_pool->threads()};
+  resolve_pool->Run(
+      [](void* context, int thread) {
+        const ResolveJob& j = *static_cast<const ResolveJob*>(context);
+        const int h = j.frame->height;
+        render::ResolveRowsWith(render::ResolveBody::kBest, j.frame->color_rgba.data(), j.frame->width, h,
+                                h * thread / j.threads, h * (thread + 1) / j.threads, j.frame->slot_colours.data(),
+                                kBackgroundLevel, j.out);
+      },
+      &job);
+}
 
 Status OsMesaFrame::Impl::Upload(const BakeMesh& mesh) {
   // Q16.16 metres to float, once.
@@ -406,6 +434,17 @@ void OsMesaFrame::SetStillCameraResolve(bool on) {
 
 bool OsMesaFrame::last_draw_resolved() const { return impl_->last_resolved; }
 
+void OsMesaFrame::SetResolveThreads(int threads) {
+  Impl& m = *impl_;
+  threads = std::clamp(threads, 1, kMaxEngineThreads);
+  const int now = m.resolve_pool != nullptr ? m.resolve_pool->threads() : 1;
+  if (threads == now) return;
+  m.resolve_pool.reset();
+  if (threads == 1) return;
+  m.resolve_pool = std::make_unique<WorkerPool>();
+  m.resolve_pool->Start(threads);
+}
+
 uint32_t OsMesaFrame::last_drawn_triangles() const { return impl_->last_drawn_triangles; }
 
 Status OsMesaFrame::Draw(const uint8_t* vertex_rgb8, uint8_t* out_rgb8) {
@@ -427,9 +466,7 @@ Status OsMesaFrame::Draw(const uint8_t* vertex_rgb8, uint8_t* out_rgb8) {
     m.BuildTable();
   }
   if (want_table && m.table_valid) {
-    render::GatherSlotColours(m.visible_indices.data(), m.visible_count, vertex_rgb8, m.slot_colours.data());
-    render::ResolvePixels(m.color_rgba.data(), m.width, m.height, m.slot_colours.data(), kBackgroundLevel,
-                          out_rgb8);
+    m.Resolve(vertex_rgb8, out_rgb8);
     m.last_drawn_triangles = m.visible_count;
     m.last_resolved = true;
     return Status::Ok();

@@ -41,7 +41,7 @@ void Cross(const double a[3], const double b[3], double out[3]) {
 // and v). The ray's direction is linear in the pixel, d = d0 + x dx + y dy,
 // and u, v and the determinant are each d dotted with a vector fixed per
 // triangle, so per triangle they are three linear functions of (x, y) and
-// per pixel two divisions by the third.
+// per pixel two products with the reciprocal of the third.
 struct TrianglePlane {
   double u[3], v[3], det[3];  // constant, x and y coefficients
 
@@ -77,8 +77,9 @@ struct TrianglePlane {
     if (!(std::fabs(d) > 1e-300)) return;
     // The pixel centre lies in the triangle (the rasteriser put it there); a
     // rounding step outside is brought back onto its edge.
-    double wu = std::clamp((u[0] + x * u[1] + y * u[2]) / d, 0.0, 1.0);
-    double wv = std::clamp((v[0] + x * v[1] + y * v[2]) / d, 0.0, 1.0);
+    const double inv = 1.0 / d;  // one division for both
+    double wu = std::clamp((u[0] + x * u[1] + y * u[2]) * inv, 0.0, 1.0);
+    double wv = std::clamp((v[0] + x * v[1] + y * v[2]) * inv, 0.0, 1.0);
     if (wu + wv > 1.0) {
       const double sum = wu + wv;
       wu /= sum;
@@ -168,14 +169,14 @@ inline uint32_t WeighPixel(uint32_t entry, const uint64_t* c) {
 
 // One row, pixel at a time: the reference every other body matches.
 void ResolveRowScalar(const uint8_t* row, size_t from, size_t to, const uint64_t* slot_colours, uint32_t grey,
-                      bool frame_ends_here, uint8_t* out) {
+                      bool range_ends_here, uint8_t* out) {
   for (size_t x = from; x < to; ++x) {
     const uint32_t e = LoadEntry(row + x * 4);
     const uint32_t slot = e & 0xFFFFu;
     const uint32_t rgb = slot == kResolveBackground ? grey : WeighPixel(e, slot_colours + size_t{3} * slot);
     // Four bytes written, three kept: the next pixel writes over the
-    // fourth; the frame's last pixel writes three.
-    if (x + 1 < to || !frame_ends_here) {
+    // fourth; a range's last pixel writes three.
+    if (x + 1 < to || !range_ends_here) {
       std::memcpy(out + 3 * x, &rgb, 4);
     } else {
       const uint8_t last[3] = {static_cast<uint8_t>(rgb), static_cast<uint8_t>(rgb >> 8),
@@ -194,7 +195,7 @@ void ResolveRowScalar(const uint8_t* row, size_t from, size_t to, const uint64_t
 // steps as WeighPixel, so the same bytes. Returns the first pixel it left.
 __attribute__((target("avx2"))) size_t ResolveRowAvx2(const uint8_t* row, size_t width,
                                                       const uint64_t* slot_colours, uint32_t grey,
-                                                      bool frame_ends_here, uint8_t* out) {
+                                                      bool range_ends_here, uint8_t* out) {
   const __m128i slot_mask = _mm_set1_epi32(0xFFFF);
   const __m128i background = _mm_set1_epi32(static_cast<int>(kResolveBackground));
   // Byte 2 (w1) and byte 3 (w2) of each pixel's entry into its four 16-bit lanes.
@@ -208,9 +209,9 @@ __attribute__((target("avx2"))) size_t ResolveRowAvx2(const uint8_t* row, size_t
   const __m256i half = _mm256_set1_epi16(128);
   const __m256i grey_lanes = _mm256_set1_epi64x(static_cast<long long>(SpreadRgb(reinterpret_cast<const uint8_t*>(&grey))));
   const long long* base = reinterpret_cast<const long long*>(slot_colours);
-  // The last step writes 2 bytes past its 4 pixels: within the frame unless
-  // the frame ends there, so that row keeps its last pixel for the scalar body.
-  const size_t end = frame_ends_here ? (width > 0 ? width - 1 : 0) : width;
+  // The last step writes 2 bytes past its 4 pixels: within the range unless
+  // it ends there, so that row keeps its last pixel for the scalar body.
+  const size_t end = range_ends_here ? (width > 0 ? width - 1 : 0) : width;
   size_t x = 0;
   for (; x + 4 <= end; x += 4) {
     const __m128i e = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x * 4));
@@ -247,11 +248,11 @@ bool UseAvx2() {
 
 void ResolvePixels(const uint8_t* table, int width, int height, const uint64_t* slot_colours, uint8_t background,
                    uint8_t* out_rgb8) {
-  ResolvePixelsWith(ResolveBody::kBest, table, width, height, slot_colours, background, out_rgb8);
+  ResolveRowsWith(ResolveBody::kBest, table, width, height, 0, height, slot_colours, background, out_rgb8);
 }
 
-bool ResolvePixelsWith(ResolveBody body, const uint8_t* table, int width, int height, const uint64_t* slot_colours,
-                       uint8_t background, uint8_t* out_rgb8) {
+bool ResolveRowsWith(ResolveBody body, const uint8_t* table, int width, int height, int y_begin, int y_end,
+                     const uint64_t* slot_colours, uint8_t background, uint8_t* out_rgb8) {
   bool avx2 = false;
 #ifdef RELIGHT_RESOLVE_AVX2
   avx2 = body == ResolveBody::kAvx2 ? __builtin_cpu_supports("avx2") : body == ResolveBody::kBest && UseAvx2();
@@ -259,15 +260,17 @@ bool ResolvePixelsWith(ResolveBody body, const uint8_t* table, int width, int he
   if (body == ResolveBody::kAvx2 && !avx2) return false;
   const size_t w = static_cast<size_t>(width);
   const uint32_t grey = background | background << 8 | static_cast<uint32_t>(background) << 16;
-  for (int y = 0; y < height; ++y) {
+  for (int y = y_begin < 0 ? 0 : y_begin; y < y_end && y < height; ++y) {
     const uint8_t* row = table + static_cast<size_t>(height - 1 - y) * w * 4;  // GL rows: bottom first
     uint8_t* out = out_rgb8 + static_cast<size_t>(y) * w * 3;
-    const bool frame_ends_here = y + 1 == height;
+    // The range's last row writes nothing past its last pixel: the next row
+    // may be another thread's, or past the frame.
+    const bool range_ends_here = y + 1 == y_end;
     size_t x = 0;
 #ifdef RELIGHT_RESOLVE_AVX2
-    if (avx2) x = ResolveRowAvx2(row, w, slot_colours, grey, frame_ends_here, out);
+    if (avx2) x = ResolveRowAvx2(row, w, slot_colours, grey, range_ends_here, out);
 #endif
-    ResolveRowScalar(row, x, w, slot_colours, grey, frame_ends_here, out);
+    ResolveRowScalar(row, x, w, slot_colours, grey, range_ends_here, out);
   }
   return true;
 }

@@ -67,12 +67,13 @@ void GatherSlotColours(const uint32_t* shown_indices, uint32_t slots, const uint
 void ResolvePixels(const uint8_t* table, int width, int height, const uint64_t* slot_colours, uint8_t background,
                    uint8_t* out_rgb8);
 
-// The same with a chosen body, for the tests: kBest is what ResolvePixels
-// runs (AVX2 where the CPU has it, unless RELIGHT_FORCE_SCALAR is set);
-// kAvx2 returns false, writing nothing, on a CPU or target without it.
-// Every body writes the same bytes.
+// Output rows [y_begin, y_end) only, with a chosen body: kBest is what
+// ResolvePixels runs (AVX2 where the CPU has it, unless RELIGHT_FORCE_SCALAR
+// is set); kAvx2 returns false, writing nothing, on a CPU or target without
+// it. Every body and every split of the rows writes the same bytes, and a
+// range writes only its own rows, so threads can share a frame.
 enum class ResolveBody { kBest, kScalar, kAvx2 };
-bool ResolvePixelsWith(ResolveBody body, const uint8_t* table, int width, int height, const uint64_t* slot_colours,
-                       uint8_t background, uint8_t* out_rgb8);
+bool ResolveRowsWith(ResolveBody body, const uint8_t* table, int width, int height, int y_begin, int y_end,
+                     const uint64_t* slot_colours, uint8_t background, uint8_t* out_rgb8);
 
 }  // namespace relight::render

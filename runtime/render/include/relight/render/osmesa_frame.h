@@ -57,6 +57,10 @@ class OsMesaFrame {
   uint32_t last_drawn_triangles() const;
   // Whether the last Draw came from the resolve's table rather than llvmpipe.
   bool last_draw_resolved() const;
+  // Threads the resolve splits a frame's rows over (default 1, at most 16):
+  // threads - 1 workers are started here (set-up time), joined at the next
+  // change or in ~OsMesaFrame. The frame's bytes do not depend on it.
+  void SetResolveThreads(int threads);
   // World point (metres) under pixel (x, y), from the depth buffer of the last
   // draw; kNotFound where the pixel shows background.
   Status UnprojectPixel(int x, int y, float out_world[3]);

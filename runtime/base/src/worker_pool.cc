@@ -1,5 +1,5 @@
-// The engine's worker threads (see worker_pool.h).
-#include "worker_pool.h"
+// The runtime's worker threads (see relight/base/worker_pool.h).
+#include "relight/base/worker_pool.h"
 
 #include <cstdlib>
 

@@ -1,5 +1,6 @@
 // A fixed pool of worker threads for Engine::Update (issue 13 "both
-// cores"): started once at Engine::Open, joined in ~Engine. Run() hands the
+// cores"): started once at Engine::Open, joined in ~Engine; the renderer's
+// still-camera resolve has one of its own, started with the frame. Run() hands the
 // same task to every thread (the caller is thread 0) and returns when all
 // have finished it; the task splits its work by the thread index, so the
 // result never depends on which thread ran what. Run allocates nothing (a
