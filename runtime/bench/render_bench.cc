@@ -71,19 +71,33 @@ Scene StandInRoom() {
   return s;
 }
 
-void DrawAtStillCamera(benchmark::State& state, bool resolve) {
+// A frame on the scene's mesh with random vertex colours and room for its pixels.
+struct BenchFrame {
   OsMesaFrame frame;
-  if (const relight::Status st = frame.Init(g_width, g_height, g_scene->mesh); !st.ok()) {
-    state.SkipWithError(st.message().c_str());
-    return;
+  std::vector<uint8_t> rgb, pixels;
+
+  bool Init(benchmark::State& state, bool resolve) {
+    if (const relight::Status st = frame.Init(g_width, g_height, g_scene->mesh); !st.ok()) {
+      state.SkipWithError(st.message().c_str());
+      return false;
+    }
+    frame.SetStillCameraResolve(resolve);
+    rgb.resize(static_cast<size_t>(g_scene->mesh.vertex_count()) * 3);
+    pixels.resize(static_cast<size_t>(g_width) * g_height * 3);
+    std::mt19937 rng(1);
+    for (uint8_t& c : rgb) c = static_cast<uint8_t>(rng());
+    return true;
   }
-  frame.SetStillCameraResolve(resolve);
+};
+
+void DrawAtStillCamera(benchmark::State& state, bool resolve) {
+  BenchFrame f;
+  if (!f.Init(state, resolve)) return;
+  OsMesaFrame& frame = f.frame;
+  std::vector<uint8_t>& rgb = f.rgb;
+  std::vector<uint8_t>& pixels = f.pixels;
   frame.SetResolveThreads(static_cast<int>(state.range(0)));
   frame.SetCamera(g_scene->view);
-  std::vector<uint8_t> rgb(static_cast<size_t>(g_scene->mesh.vertex_count()) * 3);
-  std::vector<uint8_t> pixels(static_cast<size_t>(g_width) * g_height * 3);
-  std::mt19937 rng(1);
-  for (uint8_t& c : rgb) c = static_cast<uint8_t>(rng());
   // The first draw at a camera, then the one that finds the shown triangles
   // (and, with the resolve, builds its table): relightd's first two frames.
   for (int i = 0; i < 2; ++i) (void)frame.Draw(rgb.data(), pixels.data());
@@ -110,16 +124,11 @@ void BM_DrawResolved(benchmark::State& state) { DrawAtStillCamera(state, true); 
 // and the resolve; without it, the full colour pass, then the ID pass and
 // the culled colour pass.
 void DrawsAtANewCamera(benchmark::State& state, bool resolve) {
-  OsMesaFrame frame;
-  if (const relight::Status st = frame.Init(g_width, g_height, g_scene->mesh); !st.ok()) {
-    state.SkipWithError(st.message().c_str());
-    return;
-  }
-  frame.SetStillCameraResolve(resolve);
-  std::vector<uint8_t> rgb(static_cast<size_t>(g_scene->mesh.vertex_count()) * 3);
-  std::vector<uint8_t> pixels(static_cast<size_t>(g_width) * g_height * 3);
-  std::mt19937 rng(1);
-  for (uint8_t& c : rgb) c = static_cast<uint8_t>(rng());
+  BenchFrame f;
+  if (!f.Init(state, resolve)) return;
+  OsMesaFrame& frame = f.frame;
+  std::vector<uint8_t>& rgb = f.rgb;
+  std::vector<uint8_t>& pixels = f.pixels;
   CameraView view = g_scene->view;
   int step = 0;
   for (auto _ : state) {

@@ -561,16 +561,27 @@ TEST(OsMesaFrameTest, RoomFromInsideCoversEveryPixelAndReportsFrameTime) {
 // times with new colours (all triangles, then the ID pass and the shown
 // ones, then the shown ones) against a frame that never culls; a picking
 // pass at a new camera hands its list to the next Draw.
-TEST(OsMesaFrameTest, HiddenTriangleCullingDrawsFewerTrianglesAndTheSamePixels) {
+// The 6 x 4 x 3 m room with a 1 x 1 x 1.2 m box standing in it, and four
+// places inside to look from (eye, then target).
+BakeMesh RoomWithABox() {
   BakeMesh mesh = RoomMesh(6, 4, 3, 0.2);
   const BakeMesh box = RoomMesh(1, 1, 1.2, 0.1);
   const uint32_t offset = mesh.vertex_count();
   for (uint32_t v = 0; v < box.vertex_count(); ++v) {
-    const double shift[3] = {2.5, 1.5, 0.0};
-    AddVertex(&mesh, box.positions[v * 3] / 65536.0 + shift[0], box.positions[v * 3 + 1] / 65536.0 + shift[1],
-              box.positions[v * 3 + 2] / 65536.0 + shift[2]);
+    AddVertex(&mesh, box.positions[v * 3] / 65536.0 + 2.5, box.positions[v * 3 + 1] / 65536.0 + 1.5,
+              box.positions[v * 3 + 2] / 65536.0);
   }
   for (uint32_t i : box.triangles) mesh.triangles.push_back(i + offset);
+  return mesh;
+}
+
+constexpr float kPlacesInTheRoom[4][6] = {{0.5f, 0.5f, 1.6f, 5, 3, 0.8f},
+                                          {5.5f, 3.5f, 2.5f, 2.8f, 1.8f, 0.3f},
+                                          {3.0f, 0.3f, 1.0f, 3.0f, 3.9f, 0.6f},
+                                          {1.0f, 3.0f, 0.2f, 3.2f, 1.6f, 2.9f}};
+
+TEST(OsMesaFrameTest, HiddenTriangleCullingDrawsFewerTrianglesAndTheSamePixels) {
+  const BakeMesh mesh = RoomWithABox();
   const uint32_t triangles = mesh.triangle_count();
   std::vector<uint8_t> colours(static_cast<size_t>(mesh.vertex_count()) * 3);
   std::mt19937 rng(11);
@@ -582,12 +593,8 @@ TEST(OsMesaFrameTest, HiddenTriangleCullingDrawsFewerTrianglesAndTheSamePixels) 
   plain.SetHiddenTriangleCulling(false);
   culled.SetStillCameraResolve(false);  // llvmpipe's pixels on both sides
   std::vector<uint8_t> a(static_cast<size_t>(kFrameW) * kFrameH * 3), b(a.size());
-  const float places[4][6] = {{0.5f, 0.5f, 1.6f, 5, 3, 0.8f},
-                              {5.5f, 3.5f, 2.5f, 2.8f, 1.8f, 0.3f},
-                              {3.0f, 0.3f, 1.0f, 3.0f, 3.9f, 0.6f},
-                              {1.0f, 3.0f, 0.2f, 3.2f, 1.6f, 2.9f}};
   uint32_t fewest = triangles;
-  for (const auto& p : places) {
+  for (const auto& p : kPlacesInTheRoom) {
     const CameraView view = ViewFrom(p, 60);
     culled.SetCamera(view);
     plain.SetCamera(view);
@@ -629,14 +636,7 @@ TEST(OsMesaFrameTest, HiddenTriangleCullingDrawsFewerTrianglesAndTheSamePixels) 
 // level of llvmpipe's on nearly every pixel. A picking pass at a new camera hands its table to the next Draw, and
 // the depth under a pixel still comes from that camera after resolved frames.
 TEST(OsMesaFrameTest, StillCameraResolveMatchesTheRasterisedFrameWithinALevel) {
-  BakeMesh mesh = RoomMesh(6, 4, 3, 0.2);
-  const BakeMesh box = RoomMesh(1, 1, 1.2, 0.1);
-  const uint32_t offset = mesh.vertex_count();
-  for (uint32_t v = 0; v < box.vertex_count(); ++v) {
-    AddVertex(&mesh, box.positions[v * 3] / 65536.0 + 2.5, box.positions[v * 3 + 1] / 65536.0 + 1.5,
-              box.positions[v * 3 + 2] / 65536.0);
-  }
-  for (uint32_t i : box.triangles) mesh.triangles.push_back(i + offset);
+  const BakeMesh mesh = RoomWithABox();
   std::vector<uint8_t> colours(static_cast<size_t>(mesh.vertex_count()) * 3);
   std::mt19937 rng(23);
 
@@ -646,10 +646,6 @@ TEST(OsMesaFrameTest, StillCameraResolveMatchesTheRasterisedFrameWithinALevel) {
   ASSERT_TRUE(rasterised.Init(kFrameW, kFrameH, mesh).ok());
   rasterised.SetStillCameraResolve(false);
   std::vector<uint8_t> a(static_cast<size_t>(kFrameW) * kFrameH * 3), b(a.size());
-  const float places[4][6] = {{0.5f, 0.5f, 1.6f, 5, 3, 0.8f},
-                              {5.5f, 3.5f, 2.5f, 2.8f, 1.8f, 0.3f},
-                              {3.0f, 0.3f, 1.0f, 3.0f, 3.9f, 0.6f},
-                              {1.0f, 3.0f, 0.2f, 3.2f, 1.6f, 2.9f}};
   size_t compared = 0, over_one = 0;
   int worst = 0;
   double sum = 0;
@@ -664,7 +660,7 @@ TEST(OsMesaFrameTest, StillCameraResolveMatchesTheRasterisedFrameWithinALevel) {
     }
     compared += a.size();
   };
-  for (const auto& p : places) {
+  for (const auto& p : kPlacesInTheRoom) {
     const CameraView view = ViewFrom(p, 60);
     resolved.SetCamera(view);
     rasterised.SetCamera(view);
