@@ -61,25 +61,34 @@ __attribute__((target("avx2"))) void ClusterAvx2(const W* w, uint32_t n, uint32_
   for (uint32_t b = 0; b < tiles; ++b) {
     const uint32_t i0 = 16 * b;
     const W* tile = w + size_t{i0} * components;
-    __m256i lo[3], hi[3];  // receivers i0 + 0..7, i0 + 8..15
-    for (int ch = 0; ch < 3; ++ch) lo[ch] = hi[ch] = _mm256_setzero_si256();
+    // Six named accumulators, not arrays indexed by channel: GCC kept
+    // lo[3] / hi[3] on the stack and ran the channels as a loop, so every
+    // add waited on a store-to-load round trip (perf on the stage show: the
+    // loop's adds and pointer bumps held most of the kernel's samples).
+    __m256i lo0 = _mm256_setzero_si256(), lo1 = lo0, lo2 = lo0;  // receivers i0 + 0..7
+    __m256i hi0 = lo0, hi1 = lo0, hi2 = lo0;                     // receivers i0 + 8..15
     for (uint32_t p = 0; p < pairs; ++p) {
       const __m256i a = LoadPairs256(tile + 32 * p);
       const __m256i c = LoadPairs256(tile + 32 * p + 16);
-      for (int ch = 0; ch < 3; ++ch) {
-        lo[ch] = _mm256_add_epi32(lo[ch], _mm256_madd_epi16(a, k[ch][p]));
-        hi[ch] = _mm256_add_epi32(hi[ch], _mm256_madd_epi16(c, k[ch][p]));
-      }
+      lo0 = _mm256_add_epi32(lo0, _mm256_madd_epi16(a, k[0][p]));
+      hi0 = _mm256_add_epi32(hi0, _mm256_madd_epi16(c, k[0][p]));
+      lo1 = _mm256_add_epi32(lo1, _mm256_madd_epi16(a, k[1][p]));
+      hi1 = _mm256_add_epi32(hi1, _mm256_madd_epi16(c, k[1][p]));
+      lo2 = _mm256_add_epi32(lo2, _mm256_madd_epi16(a, k[2][p]));
+      hi2 = _mm256_add_epi32(hi2, _mm256_madd_epi16(c, k[2][p]));
     }
     if (odd) {
       const W* last = tile + 32 * pairs;
       const __m256i a = LoadLast256(last);
       const __m256i c = LoadLast256(last + 8);
-      for (int ch = 0; ch < 3; ++ch) {
-        lo[ch] = _mm256_add_epi32(lo[ch], _mm256_madd_epi16(a, k[ch][pairs]));
-        hi[ch] = _mm256_add_epi32(hi[ch], _mm256_madd_epi16(c, k[ch][pairs]));
-      }
+      lo0 = _mm256_add_epi32(lo0, _mm256_madd_epi16(a, k[0][pairs]));
+      hi0 = _mm256_add_epi32(hi0, _mm256_madd_epi16(c, k[0][pairs]));
+      lo1 = _mm256_add_epi32(lo1, _mm256_madd_epi16(a, k[1][pairs]));
+      hi1 = _mm256_add_epi32(hi1, _mm256_madd_epi16(c, k[1][pairs]));
+      lo2 = _mm256_add_epi32(lo2, _mm256_madd_epi16(a, k[2][pairs]));
+      hi2 = _mm256_add_epi32(hi2, _mm256_madd_epi16(c, k[2][pairs]));
     }
+    const __m256i lo[3] = {lo0, lo1, lo2}, hi[3] = {hi0, hi1, hi2};
     __m256i first[3], second[3];  // receivers i0 + 0..7, i0 + 8..15
     for (int ch = 0; ch < 3; ++ch) {
       if (left[ch]) {
