@@ -1,8 +1,10 @@
 // OSMesa (Mesa llvmpipe) renderer. The legacy fixed-function pipeline is all
 // we need: vertex colours are already tone-mapped sRGB, so lighting is off and
-// GL does no gamma work; GL_SMOOTH gives Gouraud shading. At a still camera,
-// from its second frame on, the pixels come from the ID pass's table instead
-// (pixel_resolve.h), and llvmpipe draws again only when the camera moves.
+// GL does no gamma work; GL_SMOOTH gives Gouraud shading. With the
+// still-camera resolve (the default) a camera's first Draw runs the ID pass,
+// and that frame and every later one at the camera come from the pass's
+// table instead of a colour pass (pixel_resolve.h): llvmpipe draws again only
+// when the camera moves.
 //
 // llvmpipe rasterises on LP_NUM_THREADS threads (default: one per CPU). We
 // leave the environment alone; set it outside the process to share cores.
