@@ -2,7 +2,6 @@
 // then the same bits on every target.
 #include "pixel_resolve.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -35,6 +34,9 @@ void Cross(const double a[3], const double b[3], double out[3]) {
   out[1] = a[2] * b[0] - a[0] * b[2];
   out[2] = a[0] * b[1] - a[1] * b[0];
 }
+
+// x clamped to [0, 1], and 0 for a NaN (so the integer cast after it is defined).
+double Unit(double x) { return x > 0 ? (x < 1 ? x : 1) : 0; }
 
 // Where the ray from the eye through pixel (x, y) meets a triangle's plane,
 // as its second and third vertex's barycentric weights (Moller-Trumbore's u
@@ -78,8 +80,8 @@ struct TrianglePlane {
     // The pixel centre lies in the triangle (the rasteriser put it there); a
     // rounding step outside is brought back onto its edge.
     const double inv = 1.0 / d;  // one division for both
-    double wu = std::clamp((u[0] + x * u[1] + y * u[2]) * inv, 0.0, 1.0);
-    double wv = std::clamp((v[0] + x * v[1] + y * v[2]) * inv, 0.0, 1.0);
+    double wu = Unit((u[0] + x * u[1] + y * u[2]) * inv);
+    double wv = Unit((v[0] + x * v[1] + y * v[2]) * inv);
     if (wu + wv > 1.0) {
       const double sum = wu + wv;
       wu /= sum;
