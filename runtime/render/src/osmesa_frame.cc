@@ -8,10 +8,7 @@
 //
 // llvmpipe rasterises on LP_NUM_THREADS threads (default: one per CPU). We
 // leave the environment alone; set it outside the process to share cores.
-#define GL_GLEXT_PROTOTYPES 1
 #include "relight/render/osmesa_frame.h"
-
-#include <GL/osmesa.h>
 
 #include <algorithm>
 #include <cmath>
@@ -21,7 +18,7 @@
 #include <utility>
 
 #include "camera.h"
-#include "relight/base/worker_pool.h"
+#include "osmesa_frame_impl.h"
 #include "pixel_resolve.h"
 #include "rgba_rows.h"
 #include "scene_chunks.h"
@@ -34,169 +31,12 @@ constexpr int kMaxSide = 16384;  // llvmpipe's largest framebuffer side
 // The ID pass stores triangle index + 1 in 24 bits of RGB; 0 is background.
 constexpr uint32_t kMaxTriangles = 0xFFFFFEu;
 constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
-constexpr uint8_t kBackgroundLevel = 32;  // dark grey
-constexpr float kBackgroundGrey = kBackgroundLevel / 255.0f;
-
-const char* GlErrorName(GLenum e) {
-  switch (e) {
-    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-    default: return "GL error";
-  }
-}
-
-Status CheckGl(const char* where) {
-  const GLenum e = glGetError();
-  if (e == GL_NO_ERROR) return Status::Ok();
-  while (glGetError() != GL_NO_ERROR) {
-  }
-  return Status(StatusCode::kInternal, StrFormat("render: %s: %s (0x%x)", where, GlErrorName(e), e));
-}
-
-GLsizeiptr Bytes(size_t count, size_t elem_size) { return static_cast<GLsizeiptr>(count * elem_size); }
+constexpr float kBackgroundGrey = render::kBackgroundLevel / 255.0f;
 
 }  // namespace
 
-struct OsMesaFrame::Impl {
-  OSMesaContext ctx = nullptr;
-  int width = 0;
-  int height = 0;
-  std::vector<GLubyte> color_rgba;  // OSMesa's colour buffer, bottom row first
-
-  uint32_t vertex_count = 0;
-  uint32_t triangle_count = 0;
-  render::SceneSphere scene;
-  // Buffer objects: shared-vertex mesh for the colour pass, un-shared
-  // vertices (3 per triangle, flat ID colour) for the ID pass.
-  GLuint position_vbo = 0;
-  GLuint color_vbo = 0;
-  GLuint index_vbo = 0;
-  GLuint id_position_vbo = 0;
-  GLuint id_color_vbo = 0;
-
-  // Hidden-triangle culling (visible_triangles.h): at the second Draw with
-  // an unchanged camera an ID pass finds the triangles the camera shows, and
-  // later draws send only those (same pixels, about a third of the stage's
-  // triangles). A camera that moves every frame never pays for the ID pass.
-  // All arrays are sized at Init: nothing is allocated per frame.
-  GLuint visible_index_vbo = 0;
-  std::vector<uint32_t> triangles;        // the full index list, 3 per triangle
-  std::vector<uint32_t> visible_indices;  // room for all of them
-  std::vector<uint8_t> triangle_seen;     // scratch, one per triangle
-  uint32_t visible_count = 0;
-  bool visible_valid = false;  // visible_index_vbo holds the list for the current camera
-  bool cull_hidden = true;
-  int draws_at_camera = 0;
-  uint32_t last_drawn_triangles = 0;
-
-  // The still camera's resolve (pixel_resolve.h): the same ID pass, turned
-  // in place into a table of slot and weights per pixel, after which frames
-  // at that camera skip llvmpipe. color_rgba holds the table while
-  // table_valid; any GL draw into it ends that.
-  std::vector<float> positions_m;        // what llvmpipe draws, 3 per vertex
-  std::vector<uint16_t> slot_of_triangle;
-  std::vector<uint64_t> slot_colours;    // per frame: 3 spread colours per shown triangle
-  bool resolve = true;
-  bool table_valid = false;
-  bool table_refused = false;  // this camera shows more triangles than a table names
-  bool last_resolved = false;
-  std::unique_ptr<WorkerPool> resolve_pool;  // SetResolveThreads > 1: the rows split over it
-
-  CameraView view;
-  render::CameraFrame camera;
-  render::CameraFrame drawn_camera;  // the camera of the last draw (for unprojection)
-  bool has_drawn = false;
-
-  ~Impl() { Release(); }
-
-  // Forgets the mesh and what was drawn of it; the context stays.
-  void ForgetMesh() {
-    visible_valid = false;
-    draws_at_camera = 0;
-    last_drawn_triangles = 0;
-    has_drawn = false;
-    table_valid = false;
-    table_refused = false;
-    last_resolved = false;
-  }
-
-  void Release() {
-    if (ctx != nullptr) {
-      // Buffer objects die with the context; only one context lives at a time.
-      OSMesaDestroyContext(ctx);
-      ctx = nullptr;
-    }
-    position_vbo = color_vbo = index_vbo = id_position_vbo = id_color_vbo = visible_index_vbo = 0;
-    ForgetMesh();
-    width = height = 0;
-  }
-
-  // A new mesh in the same context: its shaders, already compiled, stay.
-  Status DeleteMeshBuffers() {
-    const GLuint ids[6] = {position_vbo, color_vbo, index_vbo, id_position_vbo, id_color_vbo, visible_index_vbo};
-    glDeleteBuffers(6, ids);
-    position_vbo = color_vbo = index_vbo = id_position_vbo = id_color_vbo = visible_index_vbo = 0;
-    ForgetMesh();
-    return CheckGl("freeing the previous mesh");
-  }
-
-  Status MakeCurrent() {
-    if (ctx == nullptr) return Status(StatusCode::kInvalidArgument, "render: frame not initialised");
-    if (OSMesaGetCurrentContext() == ctx) return Status::Ok();
-    if (!OSMesaMakeCurrent(ctx, color_rgba.data(), GL_UNSIGNED_BYTE, width, height)) {
-      return Status(StatusCode::kInternal, "render: OSMesaMakeCurrent failed");
-    }
-    return Status::Ok();
-  }
-
-  void UpdateCamera() {
-    camera = render::MakeCameraFrame(view, static_cast<double>(width) / height, scene);
-  }
-
-  void LoadMatrices() {
-    float m[16];
-    render::ProjectionMatrix(camera, m);
-    glMatrixMode(GL_PROJECTION);
-    glLoadMatrixf(m);
-    render::ViewMatrix(camera, m);
-    glMatrixMode(GL_MODELVIEW);
-    glLoadMatrixf(m);
-  }
-
-  Status Upload(const BakeMesh& mesh);
-  Status Finish(const char* pass);
-  Status DrawIdPass();
-  Status FindVisibleTriangles();
-  void BuildTable();
-  void Resolve(const uint8_t* vertex_rgb8, uint8_t* out_rgb8);
-};
-
-// From the table and this frame's slot colours, the frame's rows split
-// evenly over the pool (the same bytes however they are split).
-void OsMesaFrame::Impl::Resolve(const uint8_t* vertex_rgb8, uint8_t* out_rgb8) {
-  render::GatherSlotColours(visible_indices.data(), visible_count, vertex_rgb8, slot_colours.data());
-  if (resolve_pool == nullptr) {
-    render::ResolvePixels(color_rgba.data(), width, height, slot_colours.data(), kBackgroundLevel, out_rgb8);
-    return;
-  }
-  struct ResolveJob {
-    const Impl* frame;
-    uint8_t* out;
-    int threads;
-  };
-  ResolveJob job{this, out_rgb8, resolve_pool->threads()};
-  resolve_pool->Run(
-      [](void* context, int thread) {
-        const ResolveJob& j = *static_cast<const ResolveJob*>(context);
-        const int h = j.frame->height;
-        render::ResolveRowsWith(render::ResolveBody::kBest, j.frame->color_rgba.data(), j.frame->width, h,
-                                h * thread / j.threads, h * (thread + 1) / j.threads, j.frame->slot_colours.data(),
-                                kBackgroundLevel, j.out);
-      },
-      &job);
-}
+using render::Bytes;
+using render::CheckGl;
 
 Status OsMesaFrame::Impl::Upload(const BakeMesh& mesh) {
   // Q16.16 metres to float, once.
@@ -261,64 +101,6 @@ Status OsMesaFrame::Impl::Upload(const BakeMesh& mesh) {
   positions_m = std::move(pos);
   return CheckGl("uploading the mesh");
 }
-
-// Waits for llvmpipe, which also copies the frame into color_rgba.
-Status OsMesaFrame::Impl::Finish(const char* pass) {
-  glFinish();
-  RELIGHT_RETURN_IF_ERROR(CheckGl(pass));
-  drawn_camera = camera;
-  has_drawn = true;
-  return Status::Ok();
-}
-
-// Draws every triangle in its ID colour (flat: exact codes); color_rgba then
-// holds the codes, bottom row first.
-Status OsMesaFrame::Impl::DrawIdPass() {
-  table_valid = false;  // the pass draws over the table
-  LoadMatrices();
-  glShadeModel(GL_FLAT);
-  glClearColor(0, 0, 0, 0);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  if (triangle_count > 0) {
-    glBindBuffer(GL_ARRAY_BUFFER, id_color_vbo);
-    glColorPointer(3, GL_UNSIGNED_BYTE, 0, nullptr);
-    glBindBuffer(GL_ARRAY_BUFFER, id_position_vbo);
-    glVertexPointer(3, GL_FLOAT, 0, nullptr);
-    render::DrawTriangleArrays(triangle_count, render::kTrianglesPerScene);
-    glBindBuffer(GL_ARRAY_BUFFER, 0);
-  }
-  glShadeModel(GL_SMOOTH);
-  return Finish("the ID pass");
-}
-
-// From the ID pass in color_rgba: the shown triangles into visible_index_vbo.
-Status OsMesaFrame::Impl::FindVisibleTriangles() {
-  visible_count = render::CompactVisibleTriangles(color_rgba.data(), static_cast<size_t>(width) * height,
-                                                  triangles.data(), triangle_count, triangle_seen.data(),
-                                                  visible_indices.data());
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, visible_index_vbo);
-  glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, Bytes(size_t{visible_count} * 3, sizeof(GLuint)),
-                  visible_indices.data());
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
-  RELIGHT_RETURN_IF_ERROR(CheckGl("uploading the visible triangles"));
-  visible_valid = true;
-  return Status::Ok();
-}
-
-// From the ID pass in color_rgba, right after FindVisibleTriangles: the
-// resolve's table, in place.
-void OsMesaFrame::Impl::BuildTable() {
-  table_valid = false;
-  if (!resolve || visible_count > render::kResolveMaxSlots) {
-    table_refused = resolve;
-    return;
-  }
-  render::NumberShownTriangles(triangle_seen.data(), triangle_count, slot_of_triangle.data());
-  render::BuildPixelTable(camera, width, height, positions_m.data(), triangles.data(), slot_of_triangle.data(),
-                          triangle_count, color_rgba.data());
-  table_valid = true;
-}
-
 OsMesaFrame::OsMesaFrame() : impl_(new Impl) {}
 OsMesaFrame::~OsMesaFrame() = default;
 

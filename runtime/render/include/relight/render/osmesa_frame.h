@@ -41,8 +41,10 @@ class OsMesaFrame {
   // Triangle index per pixel (top row first), 0xFFFFFFFF where nothing is drawn.
   Status DrawTriangleIds(uint32_t* out_ids);
   // Hidden-triangle culling, on by default: from the second Draw at an
-  // unchanged camera on, only the triangles an ID pass found shown there are
-  // drawn; the frames are bit-identical either way (src/visible_triangles.h).
+  // unchanged camera on (the first, with the resolve below), only the
+  // triangles an ID pass found shown there are drawn; llvmpipe's frames are
+  // bit-identical either way (src/visible_triangles.h). Off, there is no ID
+  // pass and so no resolve.
   void SetHiddenTriangleCulling(bool on);
   // Still-camera resolve, on by default, with the culling: at the first Draw
   // at a camera an ID pass finds the shown triangles and keeps, per pixel,
