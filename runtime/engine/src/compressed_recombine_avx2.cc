@@ -35,6 +35,28 @@ __attribute__((target("avx2"), always_inline)) inline __m256i FinishLeft(__m256i
                                    _mm256_permutevar8x32_epi32(Saturate32(hi), low_halves), 0x20);
 }
 
+// A tile's six sums, one per channel for receivers i0 + 0..7 (lo) and
+// i0 + 8..15 (hi). Named members, not arrays indexed by channel: with
+// lo[3] / hi[3] GCC kept the sums on the stack and ran the channels as a
+// loop, so every add waited on a store-to-load round trip (perf on the
+// stage show: the loop's adds and pointer bumps held most of the kernel's
+// samples). Inlined, the members stay in registers.
+struct TileSums {
+  __m256i lo0, lo1, lo2, hi0, hi1, hi2;
+};
+
+// One pair of components: a (receivers 0..7) and c (8..15) times the
+// pair's multiplier in each channel, added to the sums.
+__attribute__((target("avx2"), always_inline)) inline void AddPair(__m256i a, __m256i c, __m256i k0, __m256i k1,
+                                                                  __m256i k2, TileSums* s) {
+  s->lo0 = _mm256_add_epi32(s->lo0, _mm256_madd_epi16(a, k0));
+  s->hi0 = _mm256_add_epi32(s->hi0, _mm256_madd_epi16(c, k0));
+  s->lo1 = _mm256_add_epi32(s->lo1, _mm256_madd_epi16(a, k1));
+  s->hi1 = _mm256_add_epi32(s->hi1, _mm256_madd_epi16(c, k1));
+  s->lo2 = _mm256_add_epi32(s->lo2, _mm256_madd_epi16(a, k2));
+  s->hi2 = _mm256_add_epi32(s->hi2, _mm256_madd_epi16(c, k2));
+}
+
 template <typename W>
 __attribute__((target("avx2"))) void ClusterAvx2(const W* w, uint32_t n, uint32_t components,
                                                  const ClusterMultipliers& m, int32_t* out) {
@@ -61,34 +83,16 @@ __attribute__((target("avx2"))) void ClusterAvx2(const W* w, uint32_t n, uint32_
   for (uint32_t b = 0; b < tiles; ++b) {
     const uint32_t i0 = 16 * b;
     const W* tile = w + size_t{i0} * components;
-    // Six named accumulators, not arrays indexed by channel: GCC kept
-    // lo[3] / hi[3] on the stack and ran the channels as a loop, so every
-    // add waited on a store-to-load round trip (perf on the stage show: the
-    // loop's adds and pointer bumps held most of the kernel's samples).
-    __m256i lo0 = _mm256_setzero_si256(), lo1 = lo0, lo2 = lo0;  // receivers i0 + 0..7
-    __m256i hi0 = lo0, hi1 = lo0, hi2 = lo0;                     // receivers i0 + 8..15
+    const __m256i zero = _mm256_setzero_si256();
+    TileSums s{zero, zero, zero, zero, zero, zero};
     for (uint32_t p = 0; p < pairs; ++p) {
-      const __m256i a = LoadPairs256(tile + 32 * p);
-      const __m256i c = LoadPairs256(tile + 32 * p + 16);
-      lo0 = _mm256_add_epi32(lo0, _mm256_madd_epi16(a, k[0][p]));
-      hi0 = _mm256_add_epi32(hi0, _mm256_madd_epi16(c, k[0][p]));
-      lo1 = _mm256_add_epi32(lo1, _mm256_madd_epi16(a, k[1][p]));
-      hi1 = _mm256_add_epi32(hi1, _mm256_madd_epi16(c, k[1][p]));
-      lo2 = _mm256_add_epi32(lo2, _mm256_madd_epi16(a, k[2][p]));
-      hi2 = _mm256_add_epi32(hi2, _mm256_madd_epi16(c, k[2][p]));
+      AddPair(LoadPairs256(tile + 32 * p), LoadPairs256(tile + 32 * p + 16), k[0][p], k[1][p], k[2][p], &s);
     }
     if (odd) {
       const W* last = tile + 32 * pairs;
-      const __m256i a = LoadLast256(last);
-      const __m256i c = LoadLast256(last + 8);
-      lo0 = _mm256_add_epi32(lo0, _mm256_madd_epi16(a, k[0][pairs]));
-      hi0 = _mm256_add_epi32(hi0, _mm256_madd_epi16(c, k[0][pairs]));
-      lo1 = _mm256_add_epi32(lo1, _mm256_madd_epi16(a, k[1][pairs]));
-      hi1 = _mm256_add_epi32(hi1, _mm256_madd_epi16(c, k[1][pairs]));
-      lo2 = _mm256_add_epi32(lo2, _mm256_madd_epi16(a, k[2][pairs]));
-      hi2 = _mm256_add_epi32(hi2, _mm256_madd_epi16(c, k[2][pairs]));
+      AddPair(LoadLast256(last), LoadLast256(last + 8), k[0][pairs], k[1][pairs], k[2][pairs], &s);
     }
-    const __m256i lo[3] = {lo0, lo1, lo2}, hi[3] = {hi0, hi1, hi2};
+    const __m256i lo[3] = {s.lo0, s.lo1, s.lo2}, hi[3] = {s.hi0, s.hi1, s.hi2};
     __m256i first[3], second[3];  // receivers i0 + 0..7, i0 + 8..15
     for (int ch = 0; ch < 3; ++ch) {
       if (left[ch]) {
