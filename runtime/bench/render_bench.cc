@@ -93,9 +93,7 @@ struct BenchFrame {
 void DrawAtStillCamera(benchmark::State& state, bool resolve) {
   BenchFrame f;
   if (!f.Init(state, resolve)) return;
-  OsMesaFrame& frame = f.frame;
-  std::vector<uint8_t>& rgb = f.rgb;
-  std::vector<uint8_t>& pixels = f.pixels;
+  auto& [frame, rgb, pixels] = f;
   frame.SetResolveThreads(static_cast<int>(state.range(0)));
   frame.SetCamera(g_scene->view);
   // The first draw at a camera, then the one that finds the shown triangles
@@ -126,9 +124,7 @@ void BM_DrawResolved(benchmark::State& state) { DrawAtStillCamera(state, true); 
 void DrawsAtANewCamera(benchmark::State& state, bool resolve) {
   BenchFrame f;
   if (!f.Init(state, resolve)) return;
-  OsMesaFrame& frame = f.frame;
-  std::vector<uint8_t>& rgb = f.rgb;
-  std::vector<uint8_t>& pixels = f.pixels;
+  auto& [frame, rgb, pixels] = f;
   CameraView view = g_scene->view;
   int step = 0;
   for (auto _ : state) {
