@@ -116,7 +116,7 @@ Floor MakeFloor(int side, int blank_rows = 0) {
   for (size_t i = 0; i < albedo.size(); ++i) albedo[i] = static_cast<uint16_t>(3000 + 7919 * i % 62000);
   f.rho.resize(albedo.size());
   ReflectanceOverPiQ32(albedo.data(), static_cast<uint32_t>(albedo.size()), f.rho.data());
-  const DirectReceivers rx{f.direction.data(), f.geometry.data(), QuantScale{1 << 29, -60}, f.n};
+  const DirectReceivers rx{f.direction.data(), f.geometry.data(), QuantScale{1 << 29, -31}, f.n};
   PrepareDirectPoints(rx, &f.points);
   return f;
 }
@@ -130,6 +130,7 @@ TEST(DirectCull, SkippedBlocksGiveTheSameValues) {
   const GammaTable& t = SharedGammaTable();
   std::mt19937_64 rng(21);
   int skipped = 0, blocks = 0;
+  int64_t lit = 0;
   // Beam edges at 4 .. 80 degrees off axis (M = 180: a sample a degree).
   for (int last : {3, 12, 40, 80}) {
     const std::vector<int64_t> lid = CutLid(180, last, &rng);
@@ -159,13 +160,15 @@ TEST(DirectCull, SkippedBlocksGiveTheSameValues) {
             DirectLightAimedQ12(f.points, t, axis, lid.data(), 180, rho, store, a.data());
             DirectLightAimedQ12(unculled, t, axis, lid.data(), 180, rho, store, b.data());
             ASSERT_EQ(a, b) << "last " << last << " tilt " << tilt << " pan " << pan;
+            for (size_t i = 0; i < a.size(); ++i) lit += a[i] != 77 && a[i] != 0 ? 1 : 0;
           }
         }
       }
     }
   }
-  std::printf("  %d of %d blocks skipped\n", skipped, blocks);
+  std::printf("  %d of %d blocks skipped, %lld values lit\n", skipped, blocks, static_cast<long long>(lit));
   EXPECT_GT(skipped, blocks / 4);  // the test must exercise the skip
+  EXPECT_GT(lit, 100000);          // and compare light, not only zeros
 }
 
 TEST(DirectCull, BlocksNoLightReachesKeepNoPointsAndGiveZero) {
@@ -180,6 +183,7 @@ TEST(DirectCull, BlocksNoLightReachesKeepNoPointsAndGiveZero) {
   const GammaTable& t = SharedGammaTable();
   std::mt19937_64 rng(5);
   const std::vector<int64_t> lid = CutLid(180, 60, &rng);
+  int64_t lit = 0;
   for (double tilt : {0.0, 40.0, 80.0}) {
     int32_t axis[3];
     BeamAxisQ30(Mounting::kHanging, Q16_16::FromRatio(0, 1), Q16_16::FromRatio(std::llround(tilt * 1000), 1000),
@@ -195,11 +199,13 @@ TEST(DirectCull, BlocksNoLightReachesKeepNoPointsAndGiveZero) {
             ASSERT_EQ(a[k], store == DirectStore::kWrite ? 0 : 77) << "unseen receiver " << i;
           } else {
             ASSERT_EQ(a[k], b[k]) << "receiver " << i << " tilt " << tilt;
+            lit += b[k] != 0 && b[k] != 77 ? 1 : 0;
           }
         }
       }
     }
   }
+  EXPECT_GT(lit, 10000);  // the seen receivers' values are light, not only zeros
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // The aimed direct term (see direct_aimed.h).
 #include "direct_aimed.h"
+#include "direct_aimed_avx2.h"
 
 #include <algorithm>
 
@@ -88,15 +89,7 @@ int64_t LidIntensityFastQ16(const int64_t* candela_q16, int M, Bam gamma) {
 
 namespace {
 
-// The kernel's per-call constants.
-struct AimedCall {
-  int64_t a0, a1, a2;    // beam axis, Q1.30
-  int64_t zero_cos_q60;  // cos gamma <= it: the LID gives 0 (direct_cull.h)
-  int intensity_shift;   // I_q16 >> it < 2^31 for every sample of this LID
-  int64_t intensity_half;
-  int e_shift;           // (I >> intensity_shift) x geometry >> e_shift = E_q12
-  uint64_t e_half;
-};
+using AimedCall = DirectAimedCall;  // the per-call constants (direct_aimed_avx2.h)
 
 // E in Q.12 lux at one point, saturated to kMaxLuxQ12.
 inline uint64_t PointLuxQ12(const DirectPoint& pt, const AimedCall& k, const GammaTable& gt,
@@ -141,9 +134,11 @@ void AimedRange(const DirectPoint* block, uint32_t first, uint32_t end, const Ai
 }
 
 template <bool kLuminance, bool kAddTo>
-void AimedLoop(const DirectPoints& points, const AimedCall& k, const GammaTable& gt,
+uint32_t AimedLoop(const DirectPoints& points, const AimedCall& k, const GammaTable& gt,
                const int64_t* lid_q16, int lid_m, uint64_t g_zero, const uint32_t* rho_q32,
                int32_t* out) {
+  const bool vector = DirectAimedHasAvx2() && DirectAimedVectorFits(k, lid_q16, lid_m);
+  uint32_t vector_done = 0;
   const uint32_t count = points.count;
   const int32_t axis[3] = {static_cast<int32_t>(k.a0), static_cast<int32_t>(k.a1), static_cast<int32_t>(k.a2)};
   for (size_t b = 0; b < points.blocks.size(); ++b) {
@@ -155,16 +150,23 @@ void AimedLoop(const DirectPoints& points, const AimedCall& k, const GammaTable&
       }
       continue;
     }
-    AimedRange<kLuminance, kAddTo>(points.points.data() + points.block_points[b], first, end, k, gt, lid_q16,
-                                   lid_m, rho_q32, out);
+    const DirectPoint* block = points.points.data() + points.block_points[b];
+    const uint32_t done =
+        vector ? DirectAimedRangeAvx2(block, end - first, k, gt, lid_q16, lid_m,
+                                      kLuminance ? rho_q32 + static_cast<size_t>(first) * 3 : nullptr, kAddTo,
+                                      out + static_cast<size_t>(first) * 3)
+               : 0;  // the same values, four receivers a step
+    vector_done += done;
+    AimedRange<kLuminance, kAddTo>(block + done, first + done, end, k, gt, lid_q16, lid_m, rho_q32, out);
   }
+  return vector_done;
 }
 
 }  // namespace
 
-void DirectLightAimedQ12(const DirectPoints& points, const GammaTable& gamma_table,
-                         const int32_t axis_q30[3], const int64_t* lid_q16, int lid_m,
-                         const uint32_t* reflectance_over_pi_q32, DirectStore store, int32_t* out) {
+uint32_t DirectLightAimedQ12(const DirectPoints& points, const GammaTable& gamma_table,
+                             const int32_t axis_q30[3], const int64_t* lid_q16, int lid_m,
+                             const uint32_t* reflectance_over_pi_q32, DirectStore store, int32_t* out) {
   AimedCall k;
   k.a0 = axis_q30[0];
   k.a1 = axis_q30[1];
@@ -183,17 +185,13 @@ void DirectLightAimedQ12(const DirectPoints& points, const GammaTable& gamma_tab
   const GammaTable& gt = gamma_table;
   const uint64_t g_zero = LidZeroFromBam(lid_q16, lid_m);
   k.zero_cos_q60 = ZeroCosQ60(gt, g_zero);
-  if (reflectance_over_pi_q32 != nullptr) {
-    if (store == DirectStore::kAdd) {
-      AimedLoop<true, true>(points, k, gt, lid_q16, lid_m, g_zero, reflectance_over_pi_q32, out);
-    } else {
-      AimedLoop<true, false>(points, k, gt, lid_q16, lid_m, g_zero, reflectance_over_pi_q32, out);
-    }
-  } else if (store == DirectStore::kAdd) {
-    AimedLoop<false, true>(points, k, gt, lid_q16, lid_m, g_zero, nullptr, out);
-  } else {
-    AimedLoop<false, false>(points, k, gt, lid_q16, lid_m, g_zero, nullptr, out);
+  const uint32_t* rho = reflectance_over_pi_q32;
+  if (rho != nullptr) {
+    return store == DirectStore::kAdd ? AimedLoop<true, true>(points, k, gt, lid_q16, lid_m, g_zero, rho, out)
+                                      : AimedLoop<true, false>(points, k, gt, lid_q16, lid_m, g_zero, rho, out);
   }
+  return store == DirectStore::kAdd ? AimedLoop<false, true>(points, k, gt, lid_q16, lid_m, g_zero, nullptr, out)
+                                    : AimedLoop<false, false>(points, k, gt, lid_q16, lid_m, g_zero, nullptr, out);
 }
 
 }  // namespace relight
