@@ -133,7 +133,7 @@ class Daemon {
   Engine& engine();
   const hal::Patch& patch() const;
   const hal::RegisterMap& register_map() const;
-  // Sources from the patch, the replay, then the extra ones.
+  // Sources from the patch, the replay, the DMX input, then the extra ones.
   std::vector<hal::InputSource*> sources() const;
   DaemonStats stats() const;
   int64_t period_us() const;
