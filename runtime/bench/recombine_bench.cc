@@ -33,6 +33,7 @@
 #include "direct.h"
 #include "direct_aimed.h"
 #include "recombine.h"
+#include "recombine_dispatch.h"
 #include "relight/bake/bake.h"
 #include "relight/engine/engine.h"
 #include "relight/base/sh_index.h"
@@ -296,7 +297,22 @@ void SetPerVertex(benchmark::State& state, uint32_t n) {
                                                     benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
+// The direct benchmarks' second argument caps the vector level
+// (recombine_dispatch.h SimdLevel): 0 the scalar path, 1 AVX2, 3 the CPU's
+// best (AVX-512 where it has CD and DQ: direct_aimed_avx2.h), so the set in
+// one run gives each body's gain.
+class DirectPathCap {
+ public:
+  explicit DirectPathCap(const benchmark::State& state) {
+    relight::SetSimdLevelCap(static_cast<relight::SimdLevel>(state.range(1)));
+  }
+  ~DirectPathCap() { relight::SetSimdLevelCap(relight::SimdLevel::kAvx512Vnni); }
+  DirectPathCap(const DirectPathCap&) = delete;
+  DirectPathCap& operator=(const DirectPathCap&) = delete;
+};
+
 void BM_DirectTerm(benchmark::State& state) {
+  const DirectPathCap path(state);
   const uint32_t n = static_cast<uint32_t>(state.range(0));
   DirectScene scene(n);
   const relight::GammaTable& table = relight::SharedGammaTable();
@@ -334,6 +350,7 @@ void BM_DirectTermFull(benchmark::State& state) {
 // are past the cut-off and skipped (direct_cull.h). per_vertex counts every
 // receiver, lit or not.
 void BM_DirectTermBeam(benchmark::State& state) {
+  const DirectPathCap path(state);
   const uint32_t n = static_cast<uint32_t>(state.range(0));
   const uint32_t side = static_cast<uint32_t>(std::lround(std::sqrt(static_cast<double>(n))));
   DirectScene scene(0);
@@ -375,8 +392,8 @@ void BM_DirectTermBeam(benchmark::State& state) {
   state.counters["vector_share"] = vector_share;  // of every receiver, lit or not (culled blocks: none)
 }
 
-BENCHMARK(BM_DirectTerm)->Arg(16384)->Arg(100000)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_DirectTermBeam)->Arg(16384)->Arg(100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DirectTerm)->ArgsProduct({{16384, 100000}, {0, 1, 3}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DirectTermBeam)->ArgsProduct({{16384, 100000}, {0, 1, 3}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_DirectTermFull)->Arg(16384)->Arg(100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_EngineMove)->Arg(16384)->Arg(100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_EngineDimmer)->Arg(16384)->Arg(100000)->Unit(benchmark::kMicrosecond);

@@ -1,5 +1,5 @@
-// The aimed direct term's AVX2 body (direct_aimed_avx2.h) against its scalar
-// path: the same bits for every receiver, over directions all round the
+// The aimed direct term's AVX2 and AVX-512 bodies (direct_aimed_avx2.h)
+// against its scalar path: the same bits for every receiver, over directions all round the
 // sphere (the acos table's both ends and its small-u start), LIDs from one
 // sample to 720 with the steepest steps the format allows, geometry from 0 to
 // 2^32 - 1, luminance and lux, write and add (near the int32 top and
@@ -22,12 +22,12 @@
 namespace relight {
 namespace {
 
-class ScalarCap {  // the scalar path for this scope
+class LevelCap {  // the paths up to `cap` for this scope
  public:
-  ScalarCap() { SetSimdLevelCap(SimdLevel::kScalar); }
-  ~ScalarCap() { SetSimdLevelCap(SimdLevel::kAvx512Vnni); }
-  ScalarCap(const ScalarCap&) = delete;
-  ScalarCap& operator=(const ScalarCap&) = delete;
+  explicit LevelCap(SimdLevel cap) { SetSimdLevelCap(cap); }
+  ~LevelCap() { SetSimdLevelCap(SimdLevel::kAvx512Vnni); }
+  LevelCap(const LevelCap&) = delete;
+  LevelCap& operator=(const LevelCap&) = delete;
 };
 
 struct Receivers {
@@ -81,13 +81,17 @@ TEST(DirectAimedAvx2, GammaTableRises) {
   for (int i = 1; i < kGammaEntries; ++i) ASSERT_GE(t.bam[i], t.bam[i - 1]) << "entry " << i;
 }
 
+// Both bodies against the scalar path: AVX2 (the level capped there) and
+// AVX-512 (uncapped, where the CPU has it).
 TEST(DirectAimedAvx2, WritesTheScalarPathsBits) {
   if (!DirectAimedHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: only the scalar path runs";
+  const bool has_avx512 = DirectAimedHasAvx512();
+  if (!has_avx512) std::printf("  no AVX-512 CD/DQ here: the AVX2 body only\n");
   std::mt19937_64 rng(77);
   std::uniform_real_distribution<double> angle(-M_PI, M_PI);
   std::uniform_int_distribution<int32_t> any(INT32_MIN, INT32_MAX);
-  int64_t lit = 0, compared = 0, vector_receivers = 0, receivers = 0;
-  // Scales whose shifts span the vector body's range of e_shift.
+  int64_t lit = 0, compared = 0, receivers = 0, vector_receivers[2] = {0, 0};
+  // Scales whose shifts span the vector bodies' range of e_shift.
   const QuantScale scales[] = {{1 << 29, -60}, {1 << 29, -40}, {1 << 20, -80}, {1 << 30, -20}};
   for (int m : {1, 7, 180, 720}) {
     for (const QuantScale& scale : scales) {
@@ -104,31 +108,42 @@ TEST(DirectAimedAvx2, WritesTheScalarPathsBits) {
             for (size_t i = 0; i < start.size(); ++i) {
               start[i] = i % 4 == 0 ? INT32_MAX - static_cast<int32_t>(i) : (i % 4 == 1 ? any(rng) : 77);
             }
-            std::vector<int32_t> vector_out = start, scalar_out = start;
-            receivers += n;
-            vector_receivers +=
-                DirectLightAimedQ12(r.points, SharedGammaTable(), axis, lid.data(), m, rho, store, vector_out.data());
+            std::vector<int32_t> scalar_out = start;
             {
-              const ScalarCap scalar;
+              const LevelCap scalar(SimdLevel::kScalar);
               DirectLightAimedQ12(r.points, SharedGammaTable(), axis, lid.data(), m, rho, store, scalar_out.data());
             }
-            for (size_t i = 0; i < start.size(); ++i) {
-              ASSERT_EQ(vector_out[i], scalar_out[i])
-                  << "value " << i << " M " << m << " scale 2^" << scale.exponent << " n " << n
-                  << (rho != nullptr ? " luminance" : " lux") << (store == DirectStore::kAdd ? " add" : " write");
-              lit += scalar_out[i] != start[i] ? 1 : 0;
-              ++compared;
+            receivers += n;
+            for (int body = 0; body < (has_avx512 ? 2 : 1); ++body) {
+              std::vector<int32_t> vector_out = start;
+              {
+                const LevelCap cap(body == 0 ? SimdLevel::kAvx2 : SimdLevel::kAvx512Vnni);
+                vector_receivers[body] += DirectLightAimedQ12(r.points, SharedGammaTable(), axis, lid.data(), m, rho,
+                                                              store, vector_out.data());
+              }
+              for (size_t i = 0; i < start.size(); ++i) {
+                ASSERT_EQ(vector_out[i], scalar_out[i])
+                    << (body == 0 ? "AVX2" : "AVX-512") << " value " << i << " M " << m << " scale 2^"
+                    << scale.exponent << " n " << n << (rho != nullptr ? " luminance" : " lux")
+                    << (store == DirectStore::kAdd ? " add" : " write");
+              }
             }
+            for (size_t i = 0; i < start.size(); ++i) lit += scalar_out[i] != start[i] ? 1 : 0;
+            compared += static_cast<int64_t>(start.size());
           }
         }
       }
     }
   }
-  std::printf("  %lld of %lld values changed by the light, all the same bits; %lld of %lld receivers in the vector body\n",
-              static_cast<long long>(lit), static_cast<long long>(compared), static_cast<long long>(vector_receivers),
-              static_cast<long long>(receivers));
-  EXPECT_GT(lit, compared / 10);                       // the comparison must cover lit receivers
-  EXPECT_GT(vector_receivers, receivers / 2);  // and receivers the vector body did
+  std::printf("  %lld of %lld values changed by the light, all the same bits; vector bodies did %lld (AVX2) and "
+              "%lld (AVX-512) of %lld receivers\n",
+              static_cast<long long>(lit), static_cast<long long>(compared), static_cast<long long>(vector_receivers[0]),
+              static_cast<long long>(vector_receivers[1]), static_cast<long long>(receivers));
+  EXPECT_GT(lit, compared / 10);  // the comparison must cover lit receivers
+  EXPECT_GT(vector_receivers[0], receivers / 2);  // and receivers the vector bodies did
+  if (has_avx512) {
+    EXPECT_GT(vector_receivers[1], receivers / 2);
+  }
 }
 
 }  // namespace

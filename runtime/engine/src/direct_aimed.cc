@@ -137,7 +137,8 @@ template <bool kLuminance, bool kAddTo>
 uint32_t AimedLoop(const DirectPoints& points, const AimedCall& k, const GammaTable& gt,
                const int64_t* lid_q16, int lid_m, uint64_t g_zero, const uint32_t* rho_q32,
                int32_t* out) {
-  const bool vector = DirectAimedHasAvx2() && DirectAimedVectorFits(k, lid_q16, lid_m);
+  const bool fits = DirectAimedVectorFits(k, lid_q16, lid_m);
+  const bool wide = fits && DirectAimedHasAvx512(), vector = fits && DirectAimedHasAvx2();
   uint32_t vector_done = 0;
   const uint32_t count = points.count;
   const int32_t axis[3] = {static_cast<int32_t>(k.a0), static_cast<int32_t>(k.a1), static_cast<int32_t>(k.a2)};
@@ -151,11 +152,12 @@ uint32_t AimedLoop(const DirectPoints& points, const AimedCall& k, const GammaTa
       continue;
     }
     const DirectPoint* block = points.points.data() + points.block_points[b];
-    const uint32_t done =
-        vector ? DirectAimedRangeAvx2(block, end - first, k, gt, lid_q16, lid_m,
-                                      kLuminance ? rho_q32 + static_cast<size_t>(first) * 3 : nullptr, kAddTo,
-                                      out + static_cast<size_t>(first) * 3)
-               : 0;  // the same values, four receivers a step
+    // The same values, eight or four receivers a step, the rest scalar.
+    const uint32_t* rho = kLuminance ? rho_q32 + static_cast<size_t>(first) * 3 : nullptr;
+    int32_t* dst = out + static_cast<size_t>(first) * 3;
+    const uint32_t done = wide     ? DirectAimedRangeAvx512(block, end - first, k, gt, lid_q16, lid_m, rho, kAddTo, dst)
+                          : vector ? DirectAimedRangeAvx2(block, end - first, k, gt, lid_q16, lid_m, rho, kAddTo, dst)
+                                   : 0;
     vector_done += done;
     AimedRange<kLuminance, kAddTo>(block + done, first + done, end, k, gt, lid_q16, lid_m, rho_q32, out);
   }

@@ -1,7 +1,9 @@
-// The AVX2 body of the aimed direct term (direct_aimed.h), in its own file
-// because the rest of the runtime is built with -mgeneral-regs-only. Four
-// receivers a step, integer instructions only (no_float_check.sh checks the
-// object code), the scalar path's arithmetic lane by lane: bit-identical.
+// The vector bodies of the aimed direct term (direct_aimed.h): AVX2, four
+// receivers a step (direct_aimed_avx2.cc), and AVX-512, eight
+// (direct_aimed_avx512.cc), in their own files because the rest of the
+// runtime is built with -mgeneral-regs-only. Integer instructions only
+// (no_float_check.sh checks the object code), the scalar path's arithmetic
+// lane by lane: bit-identical.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +27,11 @@ struct DirectAimedCall {
 // RELIGHT_FORCE_SCALAR).
 bool DirectAimedHasAvx2();
 
-// The call's constants the vector body takes: e_shift in [0, 63] and every
+// True when the active level is avx512vnni (recombine_dispatch.h: honours
+// the caps) and the CPU also has AVX-512 CD and DQ.
+bool DirectAimedHasAvx512();
+
+// The call's constants the vector bodies take: e_shift in [0, 63] and every
 // LID sample in [0, 2^47] with lid_m >= 1 (otherwise the scalar path runs).
 bool DirectAimedVectorFits(const DirectAimedCall& k, const int64_t* lid_q16, int lid_m);
 
@@ -36,5 +42,9 @@ bool DirectAimedVectorFits(const DirectAimedCall& k, const int64_t* lid_q16, int
 uint32_t DirectAimedRangeAvx2(const DirectPoint* points, uint32_t count, const DirectAimedCall& k,
                               const GammaTable& gt, const int64_t* lid_q16, int lid_m, const uint32_t* rho_q32,
                               bool add, int32_t* out);
+// The same, count rounded down to a multiple of 8.
+uint32_t DirectAimedRangeAvx512(const DirectPoint* points, uint32_t count, const DirectAimedCall& k,
+                                const GammaTable& gt, const int64_t* lid_q16, int lid_m, const uint32_t* rho_q32,
+                                bool add, int32_t* out);
 
 }  // namespace relight
