@@ -10,7 +10,8 @@
 // (skipped with a message without it). Counters: ratio_simd (median kernel
 // time over median read time), bytes (read per iteration), luminaires,
 // eight_bit (how many bases have 8-bit weights), mean_r (components, mean
-// over the bases weighted by receivers).
+// over the bases weighted by receivers), cluster_receivers (receivers per
+// cluster, mean), vector_share (of the bytes, the cluster vectors').
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -47,7 +48,7 @@ void BM_CompressedRecombineBakeOverStream(benchmark::State& state) {
   }
   std::vector<relight::BakeCompressedBasis*> bases;
   std::vector<int> terms;
-  double bytes = 0, r_weighted = 0, receivers = 0;
+  double bytes = 0, r_weighted = 0, receivers = 0, clusters = 0, vector_bytes = 0;
   int eight_bit = 0;
   size_t most_terms = 0, most_projection = 0, most_receivers = 0;
   for (relight::BakeLuminaire& lum : bake.luminaires) {
@@ -60,6 +61,8 @@ void BM_CompressedRecombineBakeOverStream(benchmark::State& state) {
     const uint32_t n = c.cluster_start.back();
     r_weighted += static_cast<double>(c.components) * n;
     receivers += n;
+    clusters += c.cluster_count();
+    vector_bytes += static_cast<double>(c.vectors.size() * 2);
     eight_bit += c.weight_bits == 8 ? 1 : 0;
     most_terms = std::max(most_terms, static_cast<size_t>(terms.back()));
     most_projection = std::max(most_projection, static_cast<size_t>(relight::CompressedProjectionValues(c)));
@@ -100,6 +103,10 @@ void BM_CompressedRecombineBakeOverStream(benchmark::State& state) {
   state.counters["luminaires"] = static_cast<double>(bases.size());
   state.counters["eight_bit"] = eight_bit;
   state.counters["mean_r"] = r_weighted / receivers;
+  // Receivers per cluster (each cluster pays its multipliers' set-up) and
+  // the share of the bytes in the cluster vectors the projection reads.
+  state.counters["cluster_receivers"] = receivers / clusters;
+  state.counters["vector_share"] = vector_bytes / bytes;
 }
 BENCHMARK(BM_CompressedRecombineBakeOverStream)->Unit(benchmark::kMicrosecond)->UseManualTime();
 
