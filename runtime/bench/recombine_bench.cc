@@ -299,7 +299,7 @@ void SetPerVertex(benchmark::State& state, uint32_t n) {
 
 // The direct benchmarks' second argument caps the vector level
 // (recombine_dispatch.h SimdLevel): 0 the scalar path, 1 AVX2, 3 the CPU's
-// best (AVX-512 where it has CD and DQ: direct_aimed_avx2.h), so the set in
+// best (AVX-512 where it has CD and DQ: direct_aimed_simd.h), so the set in
 // one run gives each body's gain.
 class DirectPathCap {
  public:

@@ -1,6 +1,6 @@
 // The aimed direct term (see direct_aimed.h).
 #include "direct_aimed.h"
-#include "direct_aimed_avx2.h"
+#include "direct_aimed_simd.h"
 
 #include <algorithm>
 
@@ -89,7 +89,7 @@ int64_t LidIntensityFastQ16(const int64_t* candela_q16, int M, Bam gamma) {
 
 namespace {
 
-using AimedCall = DirectAimedCall;  // the per-call constants (direct_aimed_avx2.h)
+using AimedCall = DirectAimedCall;  // the per-call constants (direct_aimed_simd.h)
 
 // E in Q.12 lux at one point, saturated to kMaxLuxQ12.
 inline uint64_t PointLuxQ12(const DirectPoint& pt, const AimedCall& k, const GammaTable& gt,

@@ -63,7 +63,7 @@ int64_t LidIntensityFastQ16(const int64_t* candela_q16, int M, Bam gamma);
 //               rounding to Q.12 lux, saturated to 2^33 - 1 (2 Mlux)
 //   luminance   E (< 2^33) x rho/pi (Q0.32, < 2^31) < 2^64 in uint64, rounded
 //               to Q12; saturated to int32 (and after kAdd's sum).
-// Returns how many receivers the AVX2 body did (direct_aimed_avx2.h: the
+// Returns how many receivers the vector bodies did (direct_aimed_simd.h: the
 // same values; 0 without AVX2), for tests.
 uint32_t DirectLightAimedQ12(const DirectPoints& points, const GammaTable& gamma_table,
                              const int32_t axis_q30[3], const int64_t* lid_q16, int lid_m,

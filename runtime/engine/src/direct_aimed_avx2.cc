@@ -1,4 +1,4 @@
-// AVX2 body of the aimed direct term: see direct_aimed_avx2.h. Per step four
+// AVX2 body of the aimed direct term: see direct_aimed_simd.h. Per step four
 // receivers in int64 lanes, each lane the scalar PointLuxQ12 (direct_aimed.cc)
 // and AimedRange's RGB step:
 //   cos gamma   _mm256_mul_epi32 of the Q1.30 components, summed in int64
@@ -10,7 +10,7 @@
 //               33 x 32-bit luminance product from two 32-bit multiplies
 // Shifts of signed values use the identity x >> n = ~(~x >>> n) for x < 0
 // (AVX2 has no 64-bit arithmetic shift).
-#include "direct_aimed_avx2.h"
+#include "direct_aimed_simd.h"
 
 #include <cstddef>
 

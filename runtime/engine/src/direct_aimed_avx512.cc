@@ -1,10 +1,10 @@
-// AVX-512 body of the aimed direct term: see direct_aimed_avx2.h
+// AVX-512 body of the aimed direct term: see direct_aimed_simd.h
 // (DirectAimedRangeAvx512). Eight receivers a step, each lane the scalar
 // PointLuxQ12 and AimedRange's RGB step (direct_aimed.cc), with what AVX2
 // lacks: vplzcntq for the octave of u (CD), vpsraq and vpabsq, vpmullq for
 // the 64-bit products (DQ), compare masks; table reads as plain loads, as
 // in the AVX2 body. Integer instructions only.
-#include "direct_aimed_avx2.h"
+#include "direct_aimed_simd.h"
 
 #include <cstddef>
 
@@ -84,7 +84,7 @@ RELIGHT_AVX512 __m512i GammaFromCos(const GammaTable& gt, __m512i cos_q60) {
   const __m512i ab = Read8(gt.bam, at);
   const __m512i a = _mm512_and_si512(ab, Set64(0xffffffff));
   const __m512i b = _mm512_srli_epi64(ab, 32);
-  // The table rises, so b - a < 2^31 (DirectAimedAvx2.GammaTableRises).
+  // The table rises, so b - a < 2^31 (DirectAimedSimd.GammaTableRises).
   const __m512i g_table = _mm512_add_epi64(
       a, _mm512_srli_epi64(_mm512_add_epi64(_mm512_mul_epu32(_mm512_sub_epi64(b, a), frac), Set64(0x8000)), 16));
   const __m512i g = _mm512_mask_blend_epi64(small, g_table, g_small);

@@ -1,4 +1,4 @@
-// The aimed direct term's AVX2 and AVX-512 bodies (direct_aimed_avx2.h)
+// The aimed direct term's AVX2 and AVX-512 bodies (direct_aimed_simd.h)
 // against its scalar path: the same bits for every receiver, over directions all round the
 // sphere (the acos table's both ends and its small-u start), LIDs from one
 // sample to 720 with the steepest steps the format allows, geometry from 0 to
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "direct_aimed.h"
-#include "direct_aimed_avx2.h"
+#include "direct_aimed_simd.h"
 #include "gamma_table.h"
 #include "recombine_dispatch.h"
 #include "relight/bake/bake_limits.h"
@@ -75,7 +75,7 @@ std::vector<int64_t> MakeLid(int m, std::mt19937_64* rng) {
   return lid;
 }
 
-TEST(DirectAimedAvx2, GammaTableRises) {
+TEST(DirectAimedSimd, GammaTableRises) {
   // The vector body forms b - a of neighbouring entries in 32 bits.
   const GammaTable& t = SharedGammaTable();
   for (int i = 1; i < kGammaEntries; ++i) ASSERT_GE(t.bam[i], t.bam[i - 1]) << "entry " << i;
@@ -83,7 +83,7 @@ TEST(DirectAimedAvx2, GammaTableRises) {
 
 // Both bodies against the scalar path: AVX2 (the level capped there) and
 // AVX-512 (uncapped, where the CPU has it).
-TEST(DirectAimedAvx2, WritesTheScalarPathsBits) {
+TEST(DirectAimedSimd, WritesTheScalarPathsBits) {
   if (!DirectAimedHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: only the scalar path runs";
   const bool has_avx512 = DirectAimedHasAvx512();
   if (!has_avx512) std::printf("  no AVX-512 CD/DQ here: the AVX2 body only\n");
