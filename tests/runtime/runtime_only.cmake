@@ -5,6 +5,7 @@
 # engine itself is covered by engine_no_alloc_test and relight-replay-hash on
 # a bake made on the host (cross_checks.cmake).
 relight_test(fixed_math_test SOURCES fixed_math_test.cc LIBS relight_base)
+relight_test(worker_pool_test SOURCES worker_pool_test.cc LIBS relight_base)
 relight_test(tone_map_test SOURCES tone_map_test.cc LIBS relight_engine)
 relight_test(bake_io_test SOURCES bake_io_test.cc bake_hierarchy_io_test.cc
              LIBS relight_engine PkgConfig::ZSTD ZLIB::ZLIB)

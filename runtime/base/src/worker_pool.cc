@@ -1,6 +1,7 @@
 // The runtime's worker threads (see relight/base/worker_pool.h).
 #include "relight/base/worker_pool.h"
 
+#include <chrono>
 #include <cstdlib>
 
 namespace relight {
@@ -14,6 +15,28 @@ int DefaultEngineThreads() {
   const unsigned hw = std::thread::hardware_concurrency();
   return hw >= 2 ? 2 : 1;
 }
+
+namespace {
+
+// Spins until done() or kWorkerSpinMicros pass; true when done() came.
+// The clock is read every 64 pauses, so the spin costs next to nothing.
+template <typename Done>
+bool SpinUntil(Done done) {
+  const auto limit = std::chrono::steady_clock::now() + std::chrono::microseconds(kWorkerSpinMicros);
+  for (;;) {
+    for (int i = 0; i < 64; ++i) {
+      if (done()) return true;
+#if defined(__x86_64__) || defined(__i386__)
+      __builtin_ia32_pause();
+#elif defined(__aarch64__)
+      asm volatile("yield");
+#endif
+    }
+    if (std::chrono::steady_clock::now() >= limit) return done();
+  }
+}
+
+}  // namespace
 
 WorkerPool::~WorkerPool() {
   {
@@ -35,39 +58,49 @@ void WorkerPool::Run(Task task, void* context) {
     task(context, 0);
     return;
   }
+  bool wake;
   {
     std::lock_guard<std::mutex> lock(mu_);
     task_ = task;
     context_ = context;
-    running_ = threads_ - 1;
-    ++generation_;
+    running_.store(threads_ - 1);
+    generation_.fetch_add(1);
+    wake = sleepers_ > 0;  // the others are spinning and will see it
   }
-  start_cv_.notify_all();
+  if (wake) start_cv_.notify_all();
   task(context, 0);
+  if (SpinUntil([this] { return running_.load(std::memory_order_acquire) == 0; })) return;
   std::unique_lock<std::mutex> lock(mu_);
-  done_cv_.wait(lock, [this] { return running_ == 0; });
+  caller_asleep_ = true;
+  done_cv_.wait(lock, [this] { return running_.load() == 0; });
+  caller_asleep_ = false;
 }
 
 void WorkerPool::WorkerMain(int index) {
   uint64_t seen = 0;
   for (;;) {
+    const auto ready = [&] { return stop_.load(std::memory_order_acquire) || generation_.load() != seen; };
+    if (!SpinUntil(ready)) {
+      std::unique_lock<std::mutex> lock(mu_);
+      ++sleepers_;
+      start_cv_.wait(lock, ready);
+      --sleepers_;
+    }
     Task task;
     void* context;
     {
-      std::unique_lock<std::mutex> lock(mu_);
-      start_cv_.wait(lock, [&] { return stop_ || generation_ != seen; });
+      // task_ and context_ were written under mu_ before the generation.
+      std::lock_guard<std::mutex> lock(mu_);
       if (stop_) return;
-      seen = generation_;
+      seen = generation_.load();
       task = task_;
       context = context_;
     }
     task(context, index);
-    bool last;
-    {
+    if (running_.fetch_sub(1) == 1) {  // the last: wake Run if it sleeps
       std::lock_guard<std::mutex> lock(mu_);
-      last = --running_ == 0;
+      if (caller_asleep_) done_cv_.notify_one();
     }
-    if (last) done_cv_.notify_one();
   }
 }
 

@@ -351,7 +351,11 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra
   const uint32_t n = node_count();
   threads_ = pool != nullptr ? pool->threads() : 1;
   Sweep sweep{this, emitted_q32, extra_irradiance_q32, b, {}, {}, {}, {}, {}, nullptr};
-  if (near_previous_ != nullptr && near_previous_ == last_result_) {
+  // A few changed leaves (an FE move's edges): their ancestors alone. When
+  // most leaves changed (an AR move's first shot reaches every leaf), the
+  // whole pull on both threads is cheaper (0.98 -> 0.74 ms on the 16k room's
+  // AR move); both give the same bits.
+  if (near_previous_ != nullptr && near_previous_ == last_result_ && near_count_ <= n / kSparseSetUpShare) {
     ViewChangedLeaves(b);
   } else {
     RunOnBlocks(pool, &sweep, &HierarchySolveQ32::ViewBlock);

@@ -89,6 +89,9 @@ class HierarchySolveQ32 {
   // result (another solve, or AddEmitted on another array, came between).
   // The leaves must outlive the next SolveRgb.
   void StartNear(const int64_t* previous, const uint32_t* leaves, uint32_t count);
+  // Above n / kSparseSetUpShare changed leaves the set-up pulls everything
+  // (on both threads) rather than the changed leaves' ancestors (on one).
+  static constexpr uint32_t kSparseSetUpShare = 8;
   // Adds emitted_q32 (per node, leaves only, the same in every channel) to
   // the leaves of exitance_q32 and pulls the inner nodes up again;
   // exitance_q24() follows. Adaptive refine solves without its emitter's
