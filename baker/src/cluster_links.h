@@ -46,12 +46,17 @@ struct ClusteredRefinement {
   size_t pairs_visited = 0;
 };
 
+// Levels of the cluster walk done on one thread to cut the rest into tasks
+// for every thread (about 3^k of them at the top, where clusters split in
+// two). Any value gives the same result; 0 walks on one thread.
+inline constexpr int kClusterWalkSerialLevels = 10;
+
 // brightness, epsilon: per hierarchy node, as RefineLinks takes them.
 ClusteredRefinement RefineClusters(const Hierarchy& h, const ClusterTree& tree,
                                    const NodeSamples& samples, const Visibility& vis,
                                    const std::vector<double>& brightness,
                                    const std::vector<double>& epsilon, int threads,
-                                   Progress* progress);
+                                   Progress* progress, int walk_levels = kClusterWalkSerialLevels);
 
 // F_c: the factor of a surface node's polygon seen from a cluster's centre,
 // facing it (unoccluded); negative when the centre is behind the node.

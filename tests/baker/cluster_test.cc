@@ -194,6 +194,27 @@ TEST_F(ClusteredSolve, LinksDisjointElementsApartAndIsDeterministic) {
     EXPECT_EQ(one.links[k].b_to_a, two.links[k].b_to_a);
   }
   EXPECT_EQ(one.node_pairs.size(), two.node_pairs.size());
+  // The walk's top levels cut into tasks for both threads give what the
+  // walk on one thread from the root gives, in its order.
+  const ClusteredRefinement serial = RefineClusters(h, system.tree, samples, *plain_core_->visibility,
+                                                    brightness, epsilon, 1, nullptr, /*walk_levels=*/0);
+  ASSERT_GT(serial.node_pairs.size(), 0u);
+  for (const int levels : {1, 3, 6, kClusterWalkSerialLevels}) {
+    const ClusteredRefinement cut = RefineClusters(h, system.tree, samples, *plain_core_->visibility,
+                                                   brightness, epsilon, 2, nullptr, levels);
+    EXPECT_EQ(cut.pairs_visited, serial.pairs_visited) << levels;
+    ASSERT_EQ(cut.links.size(), serial.links.size()) << levels;
+    for (size_t k = 0; k < cut.links.size(); ++k) {
+      ASSERT_EQ(cut.links[k].a, serial.links[k].a) << levels << " " << k;
+      ASSERT_EQ(cut.links[k].b, serial.links[k].b) << levels << " " << k;
+      ASSERT_EQ(cut.links[k].a_to_b, serial.links[k].a_to_b) << levels << " " << k;
+    }
+    ASSERT_EQ(cut.node_pairs.size(), serial.node_pairs.size()) << levels;
+    for (size_t k = 0; k < cut.node_pairs.size(); ++k) {
+      ASSERT_EQ(cut.node_pairs[k].p, serial.node_pairs[k].p) << levels << " " << k;
+      ASSERT_EQ(cut.node_pairs[k].q, serial.node_pairs[k].q) << levels << " " << k;
+    }
+  }
   ::testing::Test::RecordProperty("links_plain", std::to_string(plain_core_->report.links));
   ::testing::Test::RecordProperty("links_clustered", std::to_string(with.links));
   ::testing::Test::RecordProperty("cluster_links", std::to_string(with.cluster_links));
