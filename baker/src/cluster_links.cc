@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <numeric>
 
@@ -250,25 +251,52 @@ ClusteredRefinement RefineClusters(const Hierarchy& h, const ClusterTree& tree,
   const uint32_t root = tree.root_element(h);
   std::vector<ClusterRefiner::Task> tasks;
   refiner.Expand(root, root, walk_levels, &tasks, &out.pairs_visited);
-  std::vector<ClusteredRefinement> found(tasks.size());
-  ParallelFor(tasks.size(), ResolveThreads(threads), [&](size_t k, int) {
+  // Each thread appends to its own arrays (large ones: returned to the
+  // system when freed, where a vector per task would leave the heap
+  // holding their bytes for the rest of the bake); each task notes where
+  // its part lies.
+  struct Piece {
+    int worker;
+    size_t links_begin, links_end, pairs_begin, pairs_end;
+  };
+  const int workers = ResolveThreads(threads);
+  std::vector<ClusteredRefinement> found(static_cast<size_t>(workers));
+  std::vector<Piece> pieces(tasks.size());
+  ParallelFor(tasks.size(), workers, [&](size_t k, int worker) {
     const ClusterRefiner::Task& t = tasks[k];
+    ClusteredRefinement& f = found[static_cast<size_t>(worker)];
+    Piece& piece = pieces[k];
+    piece.worker = worker;
+    piece.links_begin = f.links.size();
+    piece.pairs_begin = f.node_pairs.size();
     switch (t.kind) {
       case ClusterRefiner::TaskKind::kVisit:
-        refiner.Visit(t.x, t.y, &found[k]);
+        refiner.Visit(t.x, t.y, &f);
         break;
       case ClusterRefiner::TaskKind::kLink:
-        found[k].links.push_back({t.x, t.y});
+        f.links.push_back({t.x, t.y});
         break;
       case ClusterRefiner::TaskKind::kNodePair:
-        found[k].node_pairs.push_back({t.x, t.y});
+        f.node_pairs.push_back({t.x, t.y});
         break;
     }
+    piece.links_end = f.links.size();
+    piece.pairs_end = f.node_pairs.size();
   });
-  for (ClusteredRefinement& f : found) {
-    out.links.insert(out.links.end(), f.links.begin(), f.links.end());
-    out.node_pairs.insert(out.node_pairs.end(), f.node_pairs.begin(), f.node_pairs.end());
+  size_t links = 0, pairs = 0;
+  for (const ClusteredRefinement& f : found) {
+    links += f.links.size();
+    pairs += f.node_pairs.size();
     out.pairs_visited += f.pairs_visited;
+  }
+  out.links.reserve(links);
+  out.node_pairs.reserve(pairs);
+  for (const Piece& piece : pieces) {
+    const ClusteredRefinement& f = found[static_cast<size_t>(piece.worker)];
+    out.links.insert(out.links.end(), f.links.begin() + static_cast<ptrdiff_t>(piece.links_begin),
+                     f.links.begin() + static_cast<ptrdiff_t>(piece.links_end));
+    out.node_pairs.insert(out.node_pairs.end(), f.node_pairs.begin() + static_cast<ptrdiff_t>(piece.pairs_begin),
+                          f.node_pairs.begin() + static_cast<ptrdiff_t>(piece.pairs_end));
   }
   std::vector<ClusteredRefinement>().swap(found);
   std::sort(out.links.begin(), out.links.end(), [](const ClusterLink& x, const ClusterLink& y) {
