@@ -245,8 +245,9 @@ ClusteredRefinement RefineClusters(const Hierarchy& h, const ClusterTree& tree,
   ClusteredRefinement out;
   if (tree.empty()) return out;
   // The walk casts no ray, but its link tests (a form factor each) took
-  // 7-8 s of one core on the 12 000-triangle venue, twice a bake: its top
-  // levels are cut into tasks for both cores, joined in the serial order.
+  // 57 s of one core on the 100 000-triangle venue (6 s on the 12 000),
+  // twice a bake: its top levels are cut into tasks for every thread,
+  // joined in the serial order (docs/venue.md).
   ClusterRefiner refiner(h, tree, brightness, epsilon);
   const uint32_t root = tree.root_element(h);
   std::vector<ClusterRefiner::Task> tasks;

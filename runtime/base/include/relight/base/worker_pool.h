@@ -11,7 +11,7 @@
 // times a few microseconds apart, and a sleeping thread takes 40-60 us to
 // wake through the condition variable (measured on the 2-core box), about
 // what a whole small step costs. So a worker watches for the next task for
-// up to kSpinMicros before it sleeps, and Run watches for the workers'
+// up to kWorkerSpinMicros before it sleeps, and Run watches for the workers'
 // finish as long before it sleeps; a pool left idle sleeps as before.
 #pragma once
 
