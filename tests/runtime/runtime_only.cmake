@@ -3,9 +3,11 @@
 # fixed-point helpers, tone map, the bake file format. Tests that bake a scene
 # in-process (engine_test, surface_emitter_test, ...) are left out; the
 # engine itself is covered by engine_no_alloc_test and relight-replay-hash on
-# a bake made on the host (cross_checks.cmake).
+# a bake made on the host (cross_checks.cmake). worker_pool_test is left
+# out too: under this machine's qemu-user a program that starts one
+# std::thread does not finish (checked: a bare thread-and-join, 10 s), so
+# the pool runs on the host only (scripts/cross-test.sh runs one thread).
 relight_test(fixed_math_test SOURCES fixed_math_test.cc LIBS relight_base)
-relight_test(worker_pool_test SOURCES worker_pool_test.cc LIBS relight_base)
 relight_test(tone_map_test SOURCES tone_map_test.cc LIBS relight_engine)
 relight_test(bake_io_test SOURCES bake_io_test.cc bake_hierarchy_io_test.cc
              LIBS relight_engine PkgConfig::ZSTD ZLIB::ZLIB)
