@@ -1,39 +1,72 @@
 // The emitter solve's source-moment gathers (surface_emitter_moments.h): the
-// AVX2 body gives the scalar path's bits on random data at the bounds the
-// solve allows, and the table follows the baker's rule.
+// AVX2 bodies of the gathers from inner sources give the scalar path's bits
+// on random data at the bounds the solve allows, and the table follows the
+// baker's rule.
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <random>
 #include <vector>
 
+#include "surface_emitter_gather.h"
 #include "surface_emitter_gather_avx2.h"
 #include "surface_emitter_moments.h"
 
 namespace relight {
 namespace {
 
-TEST(SurfaceEmitterMoments, Avx2GatherIsBitIdenticalToScalar) {
+// The gathers from inner sources read a row of exitance and moment per
+// source (kInnerRowInts) with the factor and both moment weights in one
+// entry; the AVX2 bodies must give the scalar sums, for leaf and inner
+// receivers, adding to what the leaf sources already put in a, u and v.
+TEST(SurfaceEmitterMoments, InnerSourceGathersAreBitIdenticalToScalar) {
   if (!EmitterGatherHasAvx2()) GTEST_SKIP() << "no AVX2 here (or RELIGHT_FORCE_SCALAR)";
   std::mt19937 rng(15);
   constexpr uint32_t kInner = 64;
-  std::vector<int32_t> moment(8 * kInner);
-  // The moment view is saturated to +-2^31 + 1 at most (view_limit_).
+  std::vector<int32_t> rows(kInnerRowInts * kInner);
+  // Views are saturated to +-(2^31 - 1) at most (view_limit_).
   std::uniform_int_distribution<int32_t> any(-INT32_MAX, INT32_MAX);
   for (int trial = 0; trial < 200; ++trial) {
-    for (uint32_t i = 0; i < 8 * kInner; ++i) moment[i] = (i % 4 == 3) ? 0 : any(rng);
-    // Up to 16 terms of full-range weights: |sum| < 16 x 2^62 would overflow,
-    // so the weights are scaled as Init's bound would (sum |w| x limit < 2^63).
+    for (uint32_t i = 0; i < rows.size(); ++i) rows[i] = (i % 4 == 3 || i % kInnerRowInts >= 12) ? 0 : any(rng);
+    // Up to 16 terms: factors and weights scaled as Init's bound would keep
+    // the sums below 2^63 (sum x limit < 2^63).
     const uint32_t count = static_cast<uint32_t>(trial % 17);
-    std::vector<EmitterMomentEntry> e(count);
+    std::vector<EmitterInnerSourceEntry> e(count);
+    std::vector<int32_t> g(2 * size_t{count});
     std::uniform_int_distribution<int32_t> weight(-(INT32_MAX >> 5), INT32_MAX >> 5);
-    for (EmitterMomentEntry& x : e) x = {static_cast<uint32_t>(rng() % kInner), weight(rng), weight(rng)};
-    int64_t scalar[3] = {1, 2, 3}, vector[3] = {4, 5, 6};
-    GatherMoment(e.data(), count, moment.data(), scalar);
-    GatherMomentAvx2(e.data(), count, moment.data(), vector);
-    for (int c = 0; c < 3; ++c) ASSERT_EQ(scalar[c], vector[c]) << "trial " << trial << " channel " << c;
-    if (count == 0) {
-      EXPECT_EQ(scalar[0], 0);
+    std::uniform_int_distribution<uint32_t> factor(0, (uint32_t{1} << 27));
+    for (EmitterInnerSourceEntry& x : e)
+      x = {static_cast<uint32_t>(rng() % kInner), factor(rng), weight(rng), weight(rng)};
+    for (int32_t& x : g) x = weight(rng);
+    int64_t a[2][3] = {{1, -2, 3}, {1, -2, 3}}, m[2][3] = {{7, 7, 7}, {8, 8, 8}};
+    GatherLeafFromInner(e.data(), count, rows.data(), a[0], m[0]);
+    GatherLeafFromInnerAvx2(e.data(), count, rows.data(), a[1], m[1]);
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_EQ(a[0][c], a[1][c]) << "leaf receiver, trial " << trial << " channel " << c;
+      ASSERT_EQ(m[0][c], m[1][c]) << "leaf receiver, trial " << trial << " channel " << c;
+    }
+    int64_t b[2][3] = {{4, 5, -6}, {4, 5, -6}}, u[2][3] = {{9, 9, 9}, {9, 9, 9}}, v[2][3] = {{-1, 0, 1}, {-1, 0, 1}};
+    GatherInnerFromInner(e.data(), g.data(), count, rows.data(), b[0], u[0], v[0], m[0]);
+    GatherInnerFromInnerAvx2(e.data(), g.data(), count, rows.data(), b[1], u[1], v[1], m[1]);
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_EQ(b[0][c], b[1][c]) << "inner receiver, trial " << trial << " channel " << c;
+      ASSERT_EQ(u[0][c], u[1][c]) << "inner receiver, trial " << trial << " channel " << c;
+      ASSERT_EQ(v[0][c], v[1][c]) << "inner receiver, trial " << trial << " channel " << c;
+      ASSERT_EQ(m[0][c], m[1][c]) << "inner receiver, trial " << trial << " channel " << c;
+    }
+    if (count == 0) {  // nothing added, the moment sum zero
+      EXPECT_EQ(a[0][1], -2);
+      EXPECT_EQ(m[0][0], 0);
+    } else {  // the scalar sum itself, for the first channel
+      int64_t want = 1, want_m = 0;
+      for (const EmitterInnerSourceEntry& x : e) {
+        const int32_t* row = &rows[kInnerRowInts * size_t{x.source}];
+        want += int64_t{x.f} * row[0];
+        want_m += int64_t{x.wu} * row[4] + int64_t{x.wv} * row[8];
+      }
+      EXPECT_EQ(a[0][0], want);
+      EXPECT_EQ(b[1][0] - 4, want - 1);
+      EXPECT_EQ(m[1][0], want_m);
     }
   }
 }

@@ -27,7 +27,8 @@ void HierarchySolveQ32::AssignBlocks() {
   std::vector<std::pair<uint64_t, uint32_t>> cost(runs);
   for (uint32_t r = 0; r < runs; ++r) {
     const uint32_t lo = run_begin_[r], hi = run_begin_[r + 1];
-    cost[r] = {uint64_t{gather_offsets_[hi] - gather_offsets_[lo]} + (gradient_offsets_[hi] - gradient_offsets_[lo]) +
+    cost[r] = {uint64_t{gather_offsets_[hi] - gather_offsets_[lo]} + (inner_offsets_[hi] - inner_offsets_[lo]) +
+                   (gradient_offsets_[hi] - gradient_offsets_[lo]) +
                    (moments_.offsets[hi] - moments_.offsets[lo]) + kNodeCost * (hi - lo),
                r};
   }

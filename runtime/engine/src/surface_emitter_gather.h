@@ -12,5 +12,9 @@ namespace relight {
 void GatherLeaf(const EmitterGatherEntry* e, uint32_t count, const int32_t* view, int64_t a[3]);
 void GatherInner(const EmitterGatherEntry* e, const int32_t* g, uint32_t count, const int32_t* view, int64_t a[3],
                  int64_t u[3], int64_t v[3]);
+void GatherLeafFromInner(const EmitterInnerSourceEntry* e, uint32_t count, const int32_t* rows, int64_t a[3],
+                         int64_t m[3]);
+void GatherInnerFromInner(const EmitterInnerSourceEntry* e, const int32_t* g, uint32_t count, const int32_t* rows,
+                          int64_t a[3], int64_t u[3], int64_t v[3], int64_t m[3]);
 
 }  // namespace relight

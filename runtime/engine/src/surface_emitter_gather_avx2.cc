@@ -64,15 +64,49 @@ __attribute__((target("avx2"))) void GatherInnerAvx2(const EmitterGatherEntry* e
   Store3(sv, v);
 }
 
-__attribute__((target("avx2"))) void GatherMomentAvx2(const EmitterMomentEntry* e, uint32_t count,
-                                                      const int32_t* moment, int64_t m[3]) {
-  __m256i su = _mm256_setzero_si256(), sv = _mm256_setzero_si256();
+namespace {
+
+__attribute__((target("avx2"), always_inline)) inline void Add3(__m256i x, int64_t out[3]) {
+  alignas(32) int64_t lanes[4];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), x);
+  out[0] += lanes[0];
+  out[1] += lanes[1];
+  out[2] += lanes[2];
+}
+
+}  // namespace
+
+__attribute__((target("avx2"))) void GatherLeafFromInnerAvx2(const EmitterInnerSourceEntry* e, uint32_t count,
+                                                             const int32_t* rows, int64_t a[3], int64_t m[3]) {
+  __m256i sa = _mm256_setzero_si256(), su = _mm256_setzero_si256(), sv = _mm256_setzero_si256();
   for (uint32_t i = 0; i < count; ++i) {
-    const int32_t* row = moment + 8 * size_t{e[i].source};
-    su = _mm256_add_epi64(su, _mm256_mul_epi32(Source(row, 0), _mm256_set1_epi32(e[i].wu)));
-    sv = _mm256_add_epi64(sv, _mm256_mul_epi32(Source(row + 4, 0), _mm256_set1_epi32(e[i].wv)));
+    const int32_t* row = rows + kInnerRowInts * size_t{e[i].source};
+    sa = _mm256_add_epi64(sa, _mm256_mul_epi32(Source(row, 0), _mm256_set1_epi32(static_cast<int32_t>(e[i].f))));
+    su = _mm256_add_epi64(su, _mm256_mul_epi32(Source(row + 4, 0), _mm256_set1_epi32(e[i].wu)));
+    sv = _mm256_add_epi64(sv, _mm256_mul_epi32(Source(row + 8, 0), _mm256_set1_epi32(e[i].wv)));
   }
+  Add3(sa, a);
   Store3(_mm256_add_epi64(su, sv), m);
+}
+
+__attribute__((target("avx2"))) void GatherInnerFromInnerAvx2(const EmitterInnerSourceEntry* e, const int32_t* g,
+                                                              uint32_t count, const int32_t* rows, int64_t a[3],
+                                                              int64_t u[3], int64_t v[3], int64_t m[3]) {
+  __m256i sa = _mm256_setzero_si256(), su = _mm256_setzero_si256(), sv = _mm256_setzero_si256();
+  __m256i mu = _mm256_setzero_si256(), mv = _mm256_setzero_si256();
+  for (uint32_t i = 0; i < count; ++i) {
+    const int32_t* row = rows + kInnerRowInts * size_t{e[i].source};
+    const __m256i b = Source(row, 0);
+    sa = _mm256_add_epi64(sa, _mm256_mul_epi32(b, _mm256_set1_epi32(static_cast<int32_t>(e[i].f))));
+    su = _mm256_add_epi64(su, _mm256_mul_epi32(b, _mm256_set1_epi32(g[2 * size_t{i}])));
+    sv = _mm256_add_epi64(sv, _mm256_mul_epi32(b, _mm256_set1_epi32(g[2 * size_t{i} + 1])));
+    mu = _mm256_add_epi64(mu, _mm256_mul_epi32(Source(row + 4, 0), _mm256_set1_epi32(e[i].wu)));
+    mv = _mm256_add_epi64(mv, _mm256_mul_epi32(Source(row + 8, 0), _mm256_set1_epi32(e[i].wv)));
+  }
+  Add3(sa, a);
+  Add3(su, u);
+  Add3(sv, v);
+  Store3(_mm256_add_epi64(mu, mv), m);
 }
 
 #else  // no AVX2 path on this target: the solve stays scalar
@@ -80,7 +114,9 @@ __attribute__((target("avx2"))) void GatherMomentAvx2(const EmitterMomentEntry* 
 void GatherLeafAvx2(const EmitterGatherEntry*, uint32_t, const int32_t*, int64_t*) {}
 void GatherInnerAvx2(const EmitterGatherEntry*, const int32_t*, uint32_t, const int32_t*, int64_t*, int64_t*,
                      int64_t*) {}
-void GatherMomentAvx2(const EmitterMomentEntry*, uint32_t, const int32_t*, int64_t*) {}
+void GatherLeafFromInnerAvx2(const EmitterInnerSourceEntry*, uint32_t, const int32_t*, int64_t*, int64_t*) {}
+void GatherInnerFromInnerAvx2(const EmitterInnerSourceEntry*, const int32_t*, uint32_t, const int32_t*, int64_t*,
+                              int64_t*, int64_t*, int64_t*) {}
 
 #endif
 

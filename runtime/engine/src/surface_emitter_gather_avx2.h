@@ -22,6 +22,20 @@ struct EmitterMomentEntry {
   int32_t wu, wv;
 };
 
+// A link of a gather whose source is an inner node: its index among the
+// inner nodes, its factor f (UQ0.32) and its moment weights (as
+// EmitterMomentEntry; zero when the link has no reverse factor). The
+// source's exitance and moment are one row of kInnerRowInts int32
+// (InnerRow), so one entry reads one cache line, not two places.
+struct EmitterInnerSourceEntry {
+  uint32_t source, f;
+  int32_t wu, wv;
+};
+
+// An inner node's row: exitance view (Q24) channels 0-2, a zero, moment u
+// (Q20 x m) 0-2, a zero, moment v 0-2, a zero, then padding to 64 bytes.
+inline constexpr uint32_t kInnerRowInts = 16;
+
 // True when the CPU runs AVX2 (recombine_avx2.h CpuHasAvx2: honours
 // RELIGHT_FORCE_SCALAR).
 bool EmitterGatherHasAvx2();
@@ -34,8 +48,13 @@ bool EmitterGatherHasAvx2();
 void GatherLeafAvx2(const EmitterGatherEntry* e, uint32_t count, const int32_t* view, int64_t a[3]);
 void GatherInnerAvx2(const EmitterGatherEntry* e, const int32_t* g, uint32_t count, const int32_t* view,
                      int64_t a[3], int64_t u[3], int64_t v[3]);
-// m[c] = sum wu x moment[8 source + c] + wv x moment[8 source + 4 + c]
-// (moment: 8 int32 per inner node, u channels 0-2, 0, v channels 0-2, 0).
-void GatherMomentAvx2(const EmitterMomentEntry* e, uint32_t count, const int32_t* moment, int64_t m[3]);
+// Inner sources (rows: kInnerRowInts int32 per inner node, InnerRow's
+// layout): a[c] += sum f x b, m[c] = sum wu x mu + wv x mv, and for an inner
+// receiver (the other) u[c] += sum g[2 i] x b, v[c] += sum g[2 i + 1] x b.
+// Every f < 2^31 as above.
+void GatherLeafFromInnerAvx2(const EmitterInnerSourceEntry* e, uint32_t count, const int32_t* rows, int64_t a[3],
+                             int64_t m[3]);
+void GatherInnerFromInnerAvx2(const EmitterInnerSourceEntry* e, const int32_t* g, uint32_t count, const int32_t* rows,
+                              int64_t a[3], int64_t u[3], int64_t v[3], int64_t m[3]);
 
 }  // namespace relight

@@ -71,16 +71,4 @@ uint64_t EmitterMomentRowSum(const EmitterMomentTable& table, uint32_t k) {
   return sum > static_cast<UInt128>(INT64_MAX) ? static_cast<uint64_t>(INT64_MAX) : static_cast<uint64_t>(sum);
 }
 
-void GatherMoment(const EmitterMomentEntry* e, uint32_t count, const int32_t* moment, int64_t m[3]) {
-  int64_t m0 = 0, m1 = 0, m2 = 0;
-  for (uint32_t i = 0; i < count; ++i) {
-    const int32_t* row = &moment[8 * size_t{e[i].source}];
-    const int64_t wu = e[i].wu, wv = e[i].wv;
-    m0 += wu * row[0] + wv * row[4];
-    m1 += wu * row[1] + wv * row[5];
-    m2 += wu * row[2] + wv * row[6];
-  }
-  m[0] = m0, m[1] = m1, m[2] = m2;
-}
-
 }  // namespace relight

@@ -56,8 +56,4 @@ void BuildEmitterMoments(const BakeHierarchy& h, EmitterMomentTable* table);
 // saturated to 2^63 - 1 (the solve's overflow bound adds it to sum f).
 uint64_t EmitterMomentRowSum(const EmitterMomentTable& table, uint32_t k);
 
-// Scalar: m[c] = sum wu x moment[8 s + c] + wv x moment[8 s + 4 + c]
-// (GatherMomentAvx2's contract, the same int64 sums).
-void GatherMoment(const EmitterMomentEntry* e, uint32_t count, const int32_t* moment, int64_t m[3]);
-
 }  // namespace relight

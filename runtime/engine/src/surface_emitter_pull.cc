@@ -12,7 +12,7 @@
 
 namespace relight {
 
-void HierarchySolveQ32::PullNode(uint32_t k, int64_t* b, int32_t* view, int32_t* moment) {
+void HierarchySolveQ32::PullNode(uint32_t k, int64_t* b, int32_t* view, int32_t* rows) {
   const BakeHierarchy& h = *h_;
   const uint32_t first = h.node_first_child[k], last = first + h.node_child_count[k];
   Int128 sum[3] = {0, 0, 0}, su[3] = {0, 0, 0}, sv[3] = {0, 0, 0};
@@ -36,12 +36,12 @@ void HierarchySolveQ32::PullNode(uint32_t k, int64_t* b, int32_t* view, int32_t*
     mu_[3 * size_t{k} + ch] = RoundShiftSat64(su[ch], -32);
     mv_[3 * size_t{k} + ch] = RoundShiftSat64(sv[ch], -32);
   }
-  SetView(k, b, view, moment);
+  SetView(k, b, view, rows);
 }
 
-void HierarchySolveQ32::Pull(uint32_t begin, uint32_t end, int64_t* b, int32_t* view, int32_t* moment) {
+void HierarchySolveQ32::Pull(uint32_t begin, uint32_t end, int64_t* b, int32_t* view, int32_t* rows) {
   for (uint32_t k = end; k-- > begin;) {  // children come after their parents
-    if (!h_->leaf(k)) PullNode(k, b, view, moment);
+    if (!h_->leaf(k)) PullNode(k, b, view, rows);
   }
 }
 
@@ -65,7 +65,7 @@ void HierarchySolveQ32::MarkAncestors(uint32_t k, uint32_t* dirty) {
 void HierarchySolveQ32::PullMarked(uint32_t dirty, int64_t* b) {
   std::sort(dirty_list_.begin(), dirty_list_.begin() + dirty, std::greater<uint32_t>());  // in place
   for (uint32_t i = 0; i < dirty; ++i) {
-    PullNode(dirty_list_[i], b, view_[0].data(), moment_view_[0].data());
+    PullNode(dirty_list_[i], b, view_[0].data(), inner_row_[0]);
     dirty_[dirty_list_[i]] = 0;
   }
 }
@@ -78,7 +78,7 @@ void HierarchySolveQ32::ViewChangedLeaves(int64_t* b) {
   uint32_t dirty = 0;
   for (uint32_t i = 0; i < near_count_; ++i) {
     const uint32_t k = near_leaves_[i];
-    SetView(k, b, view_[0].data(), moment_view_[0].data());
+    SetView(k, b, view_[0].data(), inner_row_[0]);
     MarkAncestors(k, &dirty);
   }
   PullMarked(dirty, b);

@@ -87,31 +87,59 @@ Status HierarchySolveQ32::Init(const Bake& bake) {
   h_ = &*bake.hierarchy;
   const BakeHierarchy& h = *h_;
   const uint32_t n = h.node_count();
+  BuildEmitterMoments(h, &moments_);
+  // Per receiver, the links from leaves (gather_) and those from inner nodes
+  // (inner_gather_, with their moment weights), each in link order; an inner
+  // receiver's gradients are its leaf-source links' then its inner-source
+  // links'. The sums are exact in int64 (the bound below), so splitting them
+  // changes no bit.
   gather_offsets_.assign(size_t{n} + 1, 0);
+  inner_offsets_.assign(size_t{n} + 1, 0);
+  const auto count = [&](uint32_t to, uint32_t from) {
+    ++(h.leaf(from) ? gather_offsets_ : inner_offsets_)[to + 1];
+  };
   for (uint32_t i = 0; i < h.link_count(); ++i) {
-    if (h.link_f_pq[i] != 0) ++gather_offsets_[h.link_p[i] + 1];
-    if (h.link_f_qp[i] != 0) ++gather_offsets_[h.link_q[i] + 1];
+    if (h.link_f_pq[i] != 0) count(h.link_p[i], h.link_q[i]);
+    if (h.link_f_qp[i] != 0) count(h.link_q[i], h.link_p[i]);
   }
   gradient_offsets_.assign(size_t{n} + 1, 0);
   for (uint32_t k = 0; k < n; ++k) {
-    gradient_offsets_[k + 1] = gradient_offsets_[k] + (h.leaf(k) ? 0 : gather_offsets_[k + 1]);
+    gradient_offsets_[k + 1] =
+        gradient_offsets_[k] + (h.leaf(k) ? 0 : gather_offsets_[k + 1] + inner_offsets_[k + 1]);
     gather_offsets_[k + 1] += gather_offsets_[k];
+    inner_offsets_[k + 1] += inner_offsets_[k];
   }
   gather_.assign(gather_offsets_[n], EmitterGatherEntry{0, 0});
+  inner_gather_.assign(inner_offsets_[n], EmitterInnerSourceEntry{0, 0, 0, 0});
   gradient_.assign(size_t{gradient_offsets_[n]} * 2, 0);
-  std::vector<uint32_t> fill(n, 0);
-  const auto add = [&](uint32_t to, uint32_t from, uint32_t f, const int32_t* g) {
-    const uint32_t i = fill[to]++;
-    gather_[gather_offsets_[to] + i] = EmitterGatherEntry{from, f};
+  std::vector<uint32_t> fill(n, 0), inner_fill(n, 0), moment_fill(n, 0);
+  const auto add = [&](uint32_t to, uint32_t from, uint32_t f, uint32_t f_rev, const int32_t* g) {
+    const uint32_t leaf_count = gather_offsets_[to + 1] - gather_offsets_[to];
+    uint32_t at = 0;  // the entry's place among the receiver's gradients
+    if (h.leaf(from)) {
+      at = fill[to]++;
+      gather_[gather_offsets_[to] + at] = EmitterGatherEntry{from, f};
+    } else {
+      const uint32_t i = inner_fill[to]++;
+      EmitterInnerSourceEntry& e = inner_gather_[inner_offsets_[to] + i];
+      e = EmitterInnerSourceEntry{moments_.inner_before[from], f, 0, 0};
+      if (f_rev != 0) {  // the moment table's rule: a term where the reverse factor is known
+        const EmitterMomentEntry& m = moments_.entries[moments_.offsets[to] + moment_fill[to]++];
+        e.wu = m.wu;
+        e.wv = m.wv;
+      }
+      at = leaf_count + i;
+    }
     if (h.leaf(to)) return;  // a leaf's links carry no gradient
-    gradient_[2 * size_t{gradient_offsets_[to] + i}] = g[0];
-    gradient_[2 * size_t{gradient_offsets_[to] + i} + 1] = g[1];
+    gradient_[2 * size_t{gradient_offsets_[to] + at}] = g[0];
+    gradient_[2 * size_t{gradient_offsets_[to] + at} + 1] = g[1];
   };
   for (uint32_t i = 0; i < h.link_count(); ++i) {
-    if (h.link_f_pq[i] != 0) add(h.link_p[i], h.link_q[i], h.link_f_pq[i], &h.link_g_pq[2 * size_t{i}]);
-    if (h.link_f_qp[i] != 0) add(h.link_q[i], h.link_p[i], h.link_f_qp[i], &h.link_g_qp[2 * size_t{i}]);
+    if (h.link_f_pq[i] != 0)
+      add(h.link_p[i], h.link_q[i], h.link_f_pq[i], h.link_f_qp[i], &h.link_g_pq[2 * size_t{i}]);
+    if (h.link_f_qp[i] != 0)
+      add(h.link_q[i], h.link_p[i], h.link_f_qp[i], h.link_f_pq[i], &h.link_g_qp[2 * size_t{i}]);
   }
-  BuildEmitterMoments(h, &moments_);
   // The largest sum a gather can multiply the view by (see the top comment).
   uint64_t row_max = 1;
   bool vector_ok = true;
@@ -120,6 +148,10 @@ Status HierarchySolveQ32::Init(const Bake& bake) {
     for (uint32_t e = gather_offsets_[k]; e < gather_offsets_[k + 1]; ++e) {
       f += gather_[e].f;
       if (gather_[e].f >= (uint32_t{1} << 31)) vector_ok = false;  // _mm256_mul_epi32 is signed
+    }
+    for (uint32_t e = inner_offsets_[k]; e < inner_offsets_[k + 1]; ++e) {
+      f += inner_gather_[e].f;
+      if (inner_gather_[e].f >= (uint32_t{1} << 31)) vector_ok = false;
     }
     const uint64_t w = EmitterMomentRowSum(moments_, k);  // <= 2^63 - 1
     f = f + w < f || f + w > static_cast<uint64_t>(INT64_MAX) ? static_cast<uint64_t>(INT64_MAX) : f + w;
@@ -167,20 +199,20 @@ Status HierarchySolveQ32::Init(const Bake& bake) {
   dirty_list_.assign(n, 0);
   last_result_ = near_previous_ = nullptr;
   for (std::vector<int32_t>& v : view_) v.assign(size_t{n} * 4, 0);
-  for (std::vector<int32_t>& v : moment_view_) v.assign(size_t{moments_.inner_before[n]} * 8, 0);
+  // Rows of 64 bytes on 64-byte boundaries: an inner source's gather reads one cache line.
+  for (int k = 0; k < kEmitterSolveBlocks; ++k) {
+    inner_rows_[k].assign(size_t{moments_.inner_before[n]} * kInnerRowInts + kInnerRowInts, 0);
+    const auto address = reinterpret_cast<uintptr_t>(inner_rows_[k].data());
+    inner_row_[k] = inner_rows_[k].data() + ((64 - address % 64) % 64) / sizeof(int32_t);
+  }
+  moment_entries_ = moments_.entries.size();
+  moments_.entries = {};  // in inner_gather_ now
   return Status::Ok();
 }
 
 int32_t HierarchySolveQ32::ToView(int64_t b_q32) const { return ClampedView(b_q32, kViewShift, view_limit_); }
 
-void HierarchySolveQ32::AddMoments(const EmitterMomentEntry* e, uint32_t count, const int32_t* moment,
-                                   int64_t a[3]) const {
-  int64_t m[3];
-  if (vector_) {
-    GatherMomentAvx2(e, count, moment, m);
-  } else {
-    GatherMoment(e, count, moment, m);
-  }
+void HierarchySolveQ32::AddMomentSum(const int64_t m[3], int64_t a[3]) const {
   // Q(56 - t) x 2^t = Q56; Init's bound keeps a + this below 2^63
   // (saturating all the same: a hostile bake must not reach overflow).
   const Int128 scale = Int128{1} << moments_.shift;
@@ -191,13 +223,14 @@ int32_t HierarchySolveQ32::ToMomentView(int64_t m_q32) const {
   return ClampedView(m_q32, kMomentViewShift, view_limit_);
 }
 
-void HierarchySolveQ32::SetView(uint32_t k, const int64_t* b, int32_t* view, int32_t* moment) const {
+void HierarchySolveQ32::SetView(uint32_t k, const int64_t* b, int32_t* view, int32_t* rows) const {
   for (int ch = 0; ch < 3; ++ch) view[4 * size_t{k} + ch] = ToView(b[3 * size_t{k} + ch]);
   if (h_->leaf(k)) return;
-  int32_t* row = &moment[8 * size_t{moments_.inner_before[k]}];
+  int32_t* row = &rows[kInnerRowInts * size_t{moments_.inner_before[k]}];
   for (int ch = 0; ch < 3; ++ch) {
-    row[ch] = ToMomentView(mu_[3 * size_t{k} + ch]);
-    row[4 + ch] = ToMomentView(mv_[3 * size_t{k} + ch]);
+    row[ch] = view[4 * size_t{k} + ch];
+    row[4 + ch] = ToMomentView(mu_[3 * size_t{k} + ch]);
+    row[8 + ch] = ToMomentView(mv_[3 * size_t{k} + ch]);
   }
 }
 
@@ -205,9 +238,9 @@ void HierarchySolveQ32::ViewBlock(Sweep* sweep, int block) {
   int64_t* b = sweep->b;
   for (const uint32_t r : block_runs_[block]) {
     const uint32_t begin = run_begin_[r], end = run_begin_[r + 1];
-    Pull(begin, end, b, view_[0].data(), moment_view_[0].data());
+    Pull(begin, end, b, view_[0].data(), inner_row_[0]);
     for (uint32_t k = begin; k < end; ++k)
-      if (h_->leaf(k)) SetView(k, b, view_[0].data(), moment_view_[0].data());
+      if (h_->leaf(k)) SetView(k, b, view_[0].data(), inner_row_[0]);
   }
 }
 
@@ -235,7 +268,7 @@ void HierarchySolveQ32::AddEmitted(const int64_t* emitted_q32, int64_t* b) {
   }
   last_result_ = nullptr;
   for (size_t r = 0; r + 1 < run_begin_.size(); ++r)
-    Pull(run_begin_[r], run_begin_[r + 1], b, view, moment_view_[0].data());
+    Pull(run_begin_[r], run_begin_[r + 1], b, view, inner_row_[0]);
 }
 
 void HierarchySolveQ32::ReflectedStart(const int64_t* e, int64_t* b) const {
@@ -263,7 +296,7 @@ void HierarchySolveQ32::EmittedAndReflectedStart(const int64_t* emitted, const i
 void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
   const BakeHierarchy& h = *h_;
   int32_t* view = view_[block].data();
-  int32_t* moment = moment_view_[block].data();
+  int32_t* rows = inner_row_[block];
   int64_t* b = sweep->b;
   int64_t change = 0, peak = 0;
   Int128 l1[3] = {0, 0, 0};
@@ -276,15 +309,18 @@ void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
       int64_t* gu = &gu_[3 * size_t{k}];
       int64_t* gv = &gv_[3 * size_t{k}];
       int64_t a[3], u[3], v[3];
-      const EmitterMomentEntry* me = moments_.entries.data() + moments_.offsets[k];  // data(): may be empty
-      const uint32_t moments = moments_.offsets[k + 1] - moments_.offsets[k];
+      const EmitterInnerSourceEntry* ie = inner_gather_.data() + inner_offsets_[k];  // data(): may be empty
+      const uint32_t inner_count = inner_offsets_[k + 1] - inner_offsets_[k];
+      int64_t m[3];
       if (h.leaf(k)) {  // a leaf's links carry no gradient
         if (vector_) {
           GatherLeafAvx2(e, count, view, a);
+          if (inner_count != 0) GatherLeafFromInnerAvx2(ie, inner_count, rows, a, m);
         } else {
           GatherLeaf(e, count, view, a);
+          if (inner_count != 0) GatherLeafFromInner(ie, inner_count, rows, a, m);
         }
-        if (moments != 0) AddMoments(me, moments, moment, a);
+        if (inner_count != 0) AddMomentSum(m, a);
         for (int ch = 0; ch < 3; ++ch) {
           g0[ch] = RoundShiftSat64(a[ch], -kGatherFracBits);
           gu[ch] = gv[ch] = 0;
@@ -292,12 +328,15 @@ void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
         continue;
       }
       const int32_t* g = gradient_.data() + 2 * size_t{gradient_offsets_[k]};  // empty when no inner node gathers
+      const int32_t* ig = g + 2 * size_t{count};  // the inner sources' gradients follow the leaves'
       if (vector_) {
         GatherInnerAvx2(e, g, count, view, a, u, v);
+        if (inner_count != 0) GatherInnerFromInnerAvx2(ie, ig, inner_count, rows, a, u, v, m);
       } else {
         GatherInner(e, g, count, view, a, u, v);
+        if (inner_count != 0) GatherInnerFromInner(ie, ig, inner_count, rows, a, u, v, m);
       }
-      if (moments != 0) AddMoments(me, moments, moment, a);
+      if (inner_count != 0) AddMomentSum(m, a);
       constexpr int kGradientShift = kBakeGradientFracBits + kGatherFracBits - kExitanceFracBits;
       for (int ch = 0; ch < 3; ++ch) {
         gu[ch] = RoundShiftSat64(u[ch], -kGradientShift);
@@ -335,7 +374,7 @@ void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
         view[4 * size_t{k} + ch] = ToView(updated);
       }
     }
-    Pull(begin, end, b, view, moment);
+    Pull(begin, end, b, view, rows);
   }
   sweep->change[block] = change;
   for (int ch = 0; ch < 3; ++ch) sweep->l1[block][ch] = l1[ch];
@@ -364,7 +403,7 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra
   last_result_ = b;
   for (int k = 1; k < kEmitterSolveBlocks; ++k) {
     std::memcpy(view_[k].data(), view_[0].data(), size_t{n} * 4 * sizeof(int32_t));
-    std::memcpy(moment_view_[k].data(), moment_view_[0].data(), moment_view_[0].size() * sizeof(int32_t));
+    std::memcpy(inner_row_[k], inner_row_[0], size_t{moments_.inner_before[n]} * kInnerRowInts * sizeof(int32_t));
   }
   Int128 l1_prev[3] = {0, 0, 0};
   int64_t previous = 0;
@@ -376,12 +415,12 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra
     for (int from = 0; from < kEmitterSolveBlocks; ++from) {
       for (const uint32_t r : block_runs_[from]) {
         const size_t lo = 4 * size_t{run_begin_[r]}, hi = 4 * size_t{run_begin_[r + 1]};
-        const size_t mlo = 8 * size_t{moments_.inner_before[run_begin_[r]]};
-        const size_t mhi = 8 * size_t{moments_.inner_before[run_begin_[r + 1]]};
+        const size_t mlo = kInnerRowInts * size_t{moments_.inner_before[run_begin_[r]]};
+        const size_t mhi = kInnerRowInts * size_t{moments_.inner_before[run_begin_[r + 1]]};
         for (int to = 0; to < kEmitterSolveBlocks; ++to) {
           if (to == from) continue;
           std::memcpy(&view_[to][lo], &view_[from][lo], (hi - lo) * sizeof(int32_t));
-          std::memcpy(moment_view_[to].data() + mlo, moment_view_[from].data() + mlo, (mhi - mlo) * sizeof(int32_t));
+          std::memcpy(inner_row_[to] + mlo, inner_row_[from] + mlo, (mhi - mlo) * sizeof(int32_t));
         }
       }
     }

@@ -119,17 +119,17 @@ class HierarchySolveQ32 {
   const int32_t* exitance_q24() const { return view_[0].data(); }
   uint32_t node_count() const { return static_cast<uint32_t>(child_weight_q32_.size()); }
   // Gather and moment entries a sweep reads: what a sweep costs.
-  size_t sweep_entries() const { return gather_.size() + moments_.entries.size(); }
+  size_t sweep_entries() const { return gather_.size() + inner_gather_.size() + moment_entries_; }
 
  private:
   struct Sweep;
   void SweepBlock(Sweep* sweep, int block);
-  void PullNode(uint32_t k, int64_t* b, int32_t* view, int32_t* moment);
-  void Pull(uint32_t begin, uint32_t end, int64_t* b, int32_t* view, int32_t* moment);
+  void PullNode(uint32_t k, int64_t* b, int32_t* view, int32_t* rows);
+  void Pull(uint32_t begin, uint32_t end, int64_t* b, int32_t* view, int32_t* rows);
   void ViewChangedLeaves(int64_t* b);
   void MarkAncestors(uint32_t k, uint32_t* dirty);
   void PullMarked(uint32_t dirty, int64_t* b);
-  void SetView(uint32_t k, const int64_t* b, int32_t* view, int32_t* moment) const;
+  void SetView(uint32_t k, const int64_t* b, int32_t* view, int32_t* rows) const;
   int32_t ToView(int64_t b_q32) const;
   using BlockStep = void (HierarchySolveQ32::*)(Sweep* sweep, int block);
   void RunOnBlocks(WorkerPool* pool, Sweep* sweep, BlockStep step);
@@ -138,16 +138,24 @@ class HierarchySolveQ32 {
   void ExtrapolateBlock(Sweep* sweep, int block);
   void AssignBlocks();
   int32_t ToMomentView(int64_t m_q32) const;
-  void AddMoments(const EmitterMomentEntry* e, uint32_t count, const int32_t* moment, int64_t a[3]) const;
+  // a += m x 2^t (t the moment weights' shift), saturated.
+  void AddMomentSum(const int64_t m[3], int64_t a[3]) const;
 
   const BakeHierarchy* h_ = nullptr;
-  // Node k gathers from entries [gather_offsets_[k], gather_offsets_[k + 1]);
+  // Node k gathers from leaves over entries [gather_offsets_[k],
+  // gather_offsets_[k + 1]) and from inner nodes over inner_gather_'s
+  // [inner_offsets_[k], inner_offsets_[k + 1]) (with their moment weights);
   // an inner node's gradients (Q8.23 per metre, u and v) are at
-  // gradient_[2 (gradient_offsets_[k] + i)] for its i-th entry.
-  std::vector<uint32_t> gather_offsets_, gradient_offsets_;
+  // gradient_[2 (gradient_offsets_[k] + i)] for its i-th entry, the leaf
+  // sources' first.
+  std::vector<uint32_t> gather_offsets_, inner_offsets_, gradient_offsets_;
   std::vector<EmitterGatherEntry> gather_;
+  std::vector<EmitterInnerSourceEntry> inner_gather_;
   std::vector<int32_t> gradient_;
-  EmitterMomentTable moments_;              // the source-moment terms of each node's gathers
+  // The moment terms' shift and the inner-node numbering (its entries are
+  // moved into inner_gather_ at Init; moment_entries_ counts them).
+  EmitterMomentTable moments_;
+  size_t moment_entries_ = 0;
   std::vector<uint64_t> child_weight_q32_;  // area over the parent's, 2^32 = all
   std::vector<int32_t> centre_uv_q16_;      // 2 per node, surface frame, m
   std::vector<uint64_t> rho_q32_;           // 3 per node (leaves), 2^32 = 1
@@ -171,9 +179,11 @@ class HierarchySolveQ32 {
   std::vector<uint8_t> dirty_;
   std::vector<uint32_t> dirty_list_;
   // Per block, every node's exitance as that block's gathers read it, and
-  // every inner node's moment (Q20 x m, 8 per inner node: u 0-2, 0, v 0-2, 0).
+  // every inner node's row (kInnerRowInts: its exitance view again and its
+  // moment, Q20 x m) at inner_row_[block] (64-byte aligned in inner_rows_).
   std::vector<int32_t> view_[kEmitterSolveBlocks];
-  std::vector<int32_t> moment_view_[kEmitterSolveBlocks];
+  std::vector<int32_t> inner_rows_[kEmitterSolveBlocks];
+  int32_t* inner_row_[kEmitterSolveBlocks] = {};
 };
 
 }  // namespace relight
