@@ -65,6 +65,36 @@ TEST(Saturate, AddSubAndNarrowMatchTheClampedWideValues) {
   EXPECT_GT(saturated, 100);  // the edges were reached
 }
 
+// RoundShiftSat64 against the plain formula: a right shift rounds halves up
+// (floor((v + 2^(n-1)) / 2^n)), a left shift saturates, and zero stays zero
+// at every shift (the right shifts no longer test for it).
+TEST(Saturate, RoundShiftMatchesTheRoundedClampedFormula) {
+  constexpr int64_t kMax = std::numeric_limits<int64_t>::max();
+  std::mt19937_64 rng(11);
+  std::vector<Int128> values = {0, 1, -1, 2, -2, 3, -3, static_cast<Int128>(kMax), -static_cast<Int128>(kMax) - 1};
+  for (int i = 0; i < 400; ++i) {
+    const Int128 hi = static_cast<Int128>(static_cast<int64_t>(rng()) >> (rng() % 64));
+    values.push_back(hi * (Int128{1} << (rng() % 62)) + static_cast<int64_t>(rng() >> 1));
+  }
+  for (const Int128 v : values) {
+    for (const int64_t n : {1, 2, 15, 16, 23, 24, 32, 40, 63, 64, 100, 126, 127, 130}) {
+      Int128 want = 0;
+      if (n < 127) want = (v + (Int128{1} << (n - 1))) >> n;  // floor: arithmetic shift
+      ASSERT_EQ(RoundShiftSat64(v, -n), Clamp64(want)) << static_cast<double>(v) << " >> " << n;
+    }
+    for (const int64_t s : {0, 1, 16, 62, 63, 70}) {
+      const int64_t got = RoundShiftSat64(v, s);
+      if (v == 0) {
+        ASSERT_EQ(got, 0) << "0 << " << s;
+      } else if (s < 63 && static_cast<double>(v < 0 ? -v : v) * std::ldexp(1.0, static_cast<int>(s)) < 0x1p62) {
+        ASSERT_EQ(static_cast<Int128>(got), v * (Int128{1} << s)) << static_cast<double>(v) << " << " << s;
+      } else if (s >= 63 || static_cast<double>(v < 0 ? -v : v) * std::ldexp(1.0, static_cast<int>(s)) >= 0x1p64) {
+        ASSERT_EQ(got, v > 0 ? kMax : std::numeric_limits<int64_t>::min()) << static_cast<double>(v) << " << " << s;
+      }
+    }
+  }
+}
+
 TEST(ISqrt, ExactFloorOnEdgeCases) {
   EXPECT_EQ(ISqrt64(0), 0u);
   EXPECT_EQ(ISqrt64(1), 1u);

@@ -69,12 +69,13 @@ constexpr int64_t SubSat64(int64_t a, int64_t b) {
 inline int64_t RoundShiftSat64(Int128 v, int64_t s) {
   constexpr int64_t kMax = std::numeric_limits<int64_t>::max();
   constexpr int64_t kMin = std::numeric_limits<int64_t>::min();
-  if (v == 0) return 0;
   if (s >= 0) {
     // Saturate before shifting: |v| * 2^s must stay below 2^63.
+    if (v == 0) return 0;
     if (s >= 63 || BitLength128(Abs128(v)) + s > 63) return v > 0 ? kMax : kMin;
     return static_cast<int64_t>(v * (static_cast<Int128>(1) << s));
   }
+  // A right shift needs no test for zero: (0 + 2^(n-1)) >> n is 0.
   const int64_t n = -s;
   if (n >= 127) return 0;
   return SaturateI64((v + (static_cast<Int128>(1) << (n - 1))) >> n);
