@@ -7,7 +7,8 @@
 // of the interreflected light (0.33 % of peak on the Cornell wall window's
 // grid, 0.013 % with the terms).
 //
-// Built at open (allocates); the solve reads it. Integer only.
+// Built at open (allocates); the solve takes the weights into its own
+// entries for links from inner nodes (EmitterInnerSourceEntry). Integer only.
 #pragma once
 
 #include <cstdint>
