@@ -137,6 +137,9 @@ class HierarchySolveQ32 {
   void ViewBlock(Sweep* sweep, int block);
   void ExtrapolateBlock(Sweep* sweep, int block);
   void AssignBlocks();
+  // gather_, inner_gather_, gradient_ and their offsets, moments_'s shift,
+  // view_limit_ and vector_ (surface_emitter_gather_lists.cc).
+  void BuildGatherLists();
   int32_t ToMomentView(int64_t m_q32) const;
   // a += m x 2^t (t the moment weights' shift), saturated.
   void AddMomentSum(const int64_t m[3], int64_t a[3]) const;
