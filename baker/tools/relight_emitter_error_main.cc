@@ -2,6 +2,8 @@
 // hierarchical bake) against Chandran & Srivastava's naive method (the scene
 // re-solved in float64 with the emitters as real emission: naive_emitter.h),
 // per vertex, luminaires off. Prints the error in % of the naive peak.
+// With --moved-by the engine's answer is a move's: each emitter is placed that
+// far back from its polygon first, solved, then moved onto it.
 //
 //   relight-emitter-error fixtures/chandran_room.toml --emitter
 //       "front_wall:2000:0.12,0,0.18;0.42,0,0.18;0.42,0,0.44;0.12,0,0.44"
@@ -39,6 +41,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> emitters;
   double patch_size_m = 0, naive_epsilon = 2.5e-4, table_mb = 32;
   int refine_bits = relight::kDefaultSurfaceEmitterRefineBits;
+  std::vector<double> moved_by;
   app.add_option("scene", scene_path, "scene TOML")->required();
   app.add_option("--emitter", emitters, "SURFACE:L:x,y,z;... (L cd/m^2 or R,G,B), up to 8")->required();
   app.add_option("--patch-size", patch_size_m, "patch edge length in metres, instead of the scene's");
@@ -55,6 +58,11 @@ int main(int argc, char** argv) {
                  "(EngineOptions::emitter_refine_bits)")
       ->check(CLI::Range(0, 32))
       ->capture_default_str();
+  app.add_option("--moved-by", moved_by,
+                 "DX,DY,DZ metres: measure a move, not a placement (each emitter is placed this far back from its "
+                 "polygon and solved first, then moved onto it)")
+      ->delimiter(',')
+      ->expected(3);
   CLI11_PARSE(app, argc, argv);
   try {
     relight::baker::Scene scene = relight::baker::LoadScene(scene_path);
@@ -81,6 +89,14 @@ int main(int argc, char** argv) {
         return Fail("--emitter '" + emitters[i] + "': " + error);
       shape.method = method == "fe" ? relight::SurfaceEmitterMethod::kFractionalEmissivity
                                     : relight::SurfaceEmitterMethod::kAdaptiveRefine;
+      if (!moved_by.empty()) {  // where the move starts from, solved
+        relight::SurfaceEmitterShape from = shape;
+        for (int k = 0; k < from.corner_count; ++k)
+          for (int a = 0; a < 3; ++a) from.corners_q16[k][a] -= static_cast<int32_t>(std::lround(moved_by[a] * 65536.0));
+        if (relight::Status st = engine.SetSurfaceEmitter(static_cast<int>(i), from, light); !st.ok())
+          return Fail("--emitter '" + emitters[i] + "' moved back by --moved-by: " + st.ToString());
+        engine.Update();
+      }
       if (relight::Status st = engine.SetSurfaceEmitter(static_cast<int>(i), shape, light); !st.ok())
         return Fail("--emitter '" + emitters[i] + "': " + st.ToString());
       relight::baker::NaiveEmitter e;  // the same polygon and luminance as the engine got
@@ -109,9 +125,9 @@ int main(int argc, char** argv) {
       return Fail("the bake has " + std::to_string(engine.bake().mesh.vertex_count()) + " vertices, the scene meshes to " +
                   std::to_string(want.rows()) + ": not the same scene and patch size");
     const int32_t* got = engine.vertex_luminance().raw();
-    std::printf("naive: %s solver, %zu patches, %.1f s; %s: %d sweeps, Update %.1f ms\n",
+    std::printf("naive: %s solver, %zu patches, %.1f s; %s %s: %d sweeps, Update %.1f ms\n",
                 core->solver ? "dense" : "hierarchical", core->mesh.patch_count(), naive_s, method == "fe" ? "FE" : "AR",
-                engine.last_update_emitter_sweeps(), fe_ms);
+                moved_by.empty() ? "placement" : "move", engine.last_update_emitter_sweeps(), fe_ms);
     std::printf("channel | peak cd/m^2 | max error %% of peak | mean error %% of peak | vertices\n");
     for (int c = 0; c < 3; ++c) {
       const double peak = want.col(c).cwiseAbs().maxCoeff();

@@ -11,6 +11,13 @@
 //   BM_EmitterMove10cm    SetSurfaceEmitter 10 cm on (round a 10 cm square,
 //                         never straight back) + Update(): clip, a solve
 //                         starting from the previous one, vertices, mix
+//   (adaptive refine's moves near where the emitter was last solved in full
+//   are answered from their start without a sweep, EngineOptions::
+//   emitter_quick_changes: quick_share counts them; mean_ms is the mean)
+//   BM_EmitterDrag        AR round a 10 cm circle in 1.6 cm steps (a drag at
+//                         frame rate), each SetSurfaceEmitter + Update() timed
+//   BM_EmitterSettle      an idle Update() after an AR move answered quickly:
+//                         the full solve from where it stands (untimed: the move)
 //   BM_EmitterLuminance   SetSurfaceEmitterLuminance + Update(): a rescale
 //   (Place and Move10cm run with fractional emissivity, ar:0, and adaptive
 //   refine, ar:1: the refine's new link factors, surface_emitter_refine.h,
@@ -29,6 +36,9 @@
 // RELIGHT_BENCH_BOUNCE_TABLE_MB=N in the environment sizes the engine's
 // later-bounce table (EngineOptions::emitter_bounce_table_bytes; 0: none, as
 // before it existed); it prints Open's time and the table's size.
+//
+// RELIGHT_BENCH_QUICK=0 solves every change at once (no quick answers:
+// EngineOptions::emitter_quick_changes), the same binary's baseline.
 //
 // RELIGHT_BENCH_REFINE_BITS=N sets adaptive refine's threshold to 2^-N of
 // the emitter's exitance (EngineOptions::emitter_refine_bits).
@@ -59,6 +69,8 @@ using Clock = std::chrono::steady_clock;
 relight::Engine* g_engine = nullptr;
 relight::SurfaceEmitterShape g_place[3];  // far apart
 relight::SurfaceEmitterShape g_square[4];  // 10 cm apart
+constexpr int kCircleSteps = 40;
+relight::SurfaceEmitterShape g_circle[kCircleSteps];  // round a 10 cm radius, 1.6 cm a step
 double g_pan_median_ms = 0;
 
 // The shape with the method of the benchmark's argument: 0 FE, 1 AR.
@@ -101,6 +113,9 @@ class Samples {
     state.counters["p50_ms"] = median;
     state.counters["p99_ms"] = Quantile(&wall_ms_, 0.99);
     state.counters["cpu_ms"] = Quantile(&cpu_ms_, 0.5);
+    double sum = 0;
+    for (const double ms : wall_ms_) sum += ms;
+    state.counters["mean_ms"] = sum / static_cast<double>(wall_ms_.size());
     if (g_pan_median_ms > 0) state.counters["x_pan"] = median / g_pan_median_ms;
     return median;
   }
@@ -127,7 +142,7 @@ void BM_PanChange(benchmark::State& state) {
 
 void BM_EmitterPlace(benchmark::State& state) {
   Samples samples;
-  int i = 0, sweeps = 0, total = 0, solves = 0;
+  int i = 0, sweeps = 0, total = 0, solves = 0, quick = 0;
   for (auto _ : state) {
     // A new light: removed first (untimed), so the solve starts from the emission.
     (void)g_engine->RemoveSurfaceEmitter(0);
@@ -136,16 +151,18 @@ void BM_EmitterPlace(benchmark::State& state) {
     samples.Time(state, [&] { (void)g_engine->SetSurfaceEmitter(0, shape, kWhite); });
     sweeps = g_engine->last_update_emitter_sweeps();
     total += sweeps;
+    quick += g_engine->last_update_emitters_quick();
     ++solves;
   }
   samples.Report(state);
   state.counters["sweeps"] = sweeps;
   state.counters["sweeps_mean"] = solves > 0 ? static_cast<double>(total) / solves : 0;
+  state.counters["quick_share"] = solves > 0 ? static_cast<double>(quick) / solves : 0;
 }
 
 void BM_EmitterMove10cm(benchmark::State& state) {
   Samples samples;
-  int i = 0, sweeps = 0, total = 0, solves = 0;
+  int i = 0, sweeps = 0, total = 0, solves = 0, quick = 0;
   (void)g_engine->SetSurfaceEmitter(0, With(g_square[0], state), kWhite);
   g_engine->Update();
   for (auto _ : state) {
@@ -153,11 +170,56 @@ void BM_EmitterMove10cm(benchmark::State& state) {
     samples.Time(state, [&] { (void)g_engine->SetSurfaceEmitter(0, shape, kWhite); });
     sweeps = g_engine->last_update_emitter_sweeps();
     total += sweeps;
+    quick += g_engine->last_update_emitters_quick();
     ++solves;
   }
   samples.Report(state);
   state.counters["sweeps"] = sweeps;
   state.counters["sweeps_mean"] = solves > 0 ? static_cast<double>(total) / solves : 0;
+  state.counters["quick_share"] = solves > 0 ? static_cast<double>(quick) / solves : 0;
+}
+
+// A drag at frame rate: adaptive refine round a circle of 10 cm radius in
+// 1.6 cm steps, every step timed.
+void BM_EmitterDrag(benchmark::State& state) {
+  Samples samples;
+  int i = 0, quick = 0, total = 0, moves = 0;
+  (void)g_engine->SetSurfaceEmitter(0, g_circle[0], kWhite);
+  g_engine->Update();
+  g_engine->Update();
+  for (auto _ : state) {
+    const relight::SurfaceEmitterShape& shape = g_circle[++i % kCircleSteps];
+    samples.Time(state, [&] { (void)g_engine->SetSurfaceEmitter(0, shape, kWhite); });
+    quick += g_engine->last_update_emitters_quick();
+    total += g_engine->last_update_emitter_sweeps();
+    ++moves;
+  }
+  samples.Report(state);
+  state.counters["quick_share"] = moves > 0 ? static_cast<double>(quick) / moves : 0;
+  state.counters["sweeps_mean"] = moves > 0 ? static_cast<double>(total) / moves : 0;
+}
+
+// An idle Update() after a quick adaptive-refine move: the settle.
+void BM_EmitterSettle(benchmark::State& state) {
+  Samples samples;
+  int i = 0, settles = 0;
+  relight::SurfaceEmitterShape square[4];
+  for (int k = 0; k < 4; ++k) {
+    square[k] = g_square[k];
+    square[k].method = relight::SurfaceEmitterMethod::kAdaptiveRefine;
+  }
+  (void)g_engine->SetSurfaceEmitter(0, square[0], kWhite);
+  g_engine->Update();
+  g_engine->Update();
+  for (auto _ : state) {
+    (void)g_engine->SetSurfaceEmitter(0, square[++i % 4], kWhite);  // untimed
+    g_engine->Update();
+    const bool quick = !g_engine->emitters_settled();
+    samples.Time(state, [] {});
+    settles += quick && g_engine->last_update_emitters_solved() == 1 ? 1 : 0;
+  }
+  samples.Report(state);
+  state.counters["settled_share"] = static_cast<double>(settles) / static_cast<double>(state.iterations());
 }
 
 void BM_EmitterLuminance(benchmark::State& state) {
@@ -192,6 +254,8 @@ void BM_EmitterPlaceOnly(benchmark::State& state) {
 BENCHMARK(BM_PanChange)->UseManualTime()->Iterations(300)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EmitterPlace)->ArgName("ar")->Arg(0)->Arg(1)->UseManualTime()->Iterations(150)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EmitterMove10cm)->ArgName("ar")->Arg(0)->Arg(1)->UseManualTime()->Iterations(200)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EmitterDrag)->UseManualTime()->Iterations(200)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EmitterSettle)->UseManualTime()->Iterations(100)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EmitterLuminance)->UseManualTime()->Iterations(300)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EmitterRemove)->UseManualTime()->Iterations(300)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EmitterPlaceOnly)->Unit(benchmark::kMillisecond);
@@ -222,15 +286,16 @@ int main(int argc, char** argv) {
   if (const char* mb = std::getenv("RELIGHT_BENCH_BOUNCE_TABLE_MB"))  // 0: none (the build before the table)
     options.emitter_bounce_table_bytes = std::atoll(mb) << 20;
   if (const char* bits = std::getenv("RELIGHT_BENCH_REFINE_BITS")) options.emitter_refine_bits = std::atoi(bits);
+  if (const char* quick = std::getenv("RELIGHT_BENCH_QUICK")) options.emitter_quick_changes = std::atoi(quick) != 0;
   relight::Engine engine;
   const Clock::time_point open_start = Clock::now();
   if (relight::Status st = engine.Open(argv[1], options); !st.ok()) {
     std::fprintf(stderr, "%s\n", st.ToString().c_str());
     return 2;
   }
-  std::printf("Open: %.2f s, later-bounce table: %d sources, %.1f MB\n",
+  std::printf("Open: %.2f s, later-bounce table: %d sources, %.1f MB; quick answers within %.3f m\n",
               std::chrono::duration<double>(Clock::now() - open_start).count(), engine.emitter_bounce_sources(),
-              static_cast<double>(engine.emitter_bounce_table_size()) / (1 << 20));
+              static_cast<double>(engine.emitter_bounce_table_size()) / (1 << 20), engine.emitter_quick_reach_q16() / 65536.0);
   // u along the first edge, w across it in the triangle's plane.
   double u[3], w[3], len = 0, dot = 0, wlen = 0;
   for (int i = 0; i < 3; ++i) len += (c[1][i] - c[0][i]) * (c[1][i] - c[0][i]);
@@ -254,6 +319,12 @@ int main(int argc, char** argv) {
     for (int i = 0; i < 3; ++i) o[i] = square[s][0] * u[i] + square[s][1] * w[i];
     g_square[s] = Shape(argv[2], c, o);
     g_square[s].method = relight::SurfaceEmitterMethod::kFractionalEmissivity;
+  }
+  for (int s = 0; s < kCircleSteps; ++s) {
+    const double a = 2 * M_PI * s / kCircleSteps;
+    double o[3];
+    for (int i = 0; i < 3; ++i) o[i] = 0.1 * (std::cos(a) - 1) * u[i] + 0.1 * std::sin(a) * w[i];
+    g_circle[s] = Shape(argv[2], c, o);  // AR, the shape's default
   }
   for (const relight::SurfaceEmitterShape* s : {&g_place[0], &g_place[1], &g_place[2], &g_square[2]}) {
     if (relight::Status st = engine.SetSurfaceEmitter(0, *s, kWhite); !st.ok()) {

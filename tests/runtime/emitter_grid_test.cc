@@ -80,6 +80,7 @@ Eigen::VectorXd CoveredFraction(const baker::Scene& scene, const baker::Mesh& me
 
 struct GridError {
   double max = 0, mean = 0;  // of peak, worst channel
+  int quick = 0;             // quick answers in the compared Update (a move's)
 };
 
 // The engine's grid 0 with the emitter alone (luminaires dark), against the reference.
@@ -88,7 +89,8 @@ struct GridError {
 // default; adaptive refine is compared too where a test says so.
 GridError CompareGrid(const baker::Scene& scene, const Emitter& em, const double luminance[3],
                       const baker::BakeOptions& bake_options = Hierarchical(),
-                      SurfaceEmitterMethod method = SurfaceEmitterMethod::kFractionalEmissivity) {
+                      SurfaceEmitterMethod method = SurfaceEmitterMethod::kFractionalEmissivity,
+                      double moved_from_dx_m = 0) {
   baker::Baker baker(scene, bake_options);
   Engine engine;
   EXPECT_TRUE(engine.Open(baker.Bake()).ok());
@@ -97,8 +99,17 @@ GridError CompareGrid(const baker::Scene& scene, const Emitter& em, const double
   const LightQ12 light[3] = {Light(luminance[0]), Light(luminance[1]), Light(luminance[2])};
   SurfaceEmitterShape shape = MakeShape(em.surface, em.corners);
   shape.method = method;
+  if (moved_from_dx_m != 0) {  // a move's answer: placed there first, settled, then moved here
+    std::vector<Vec3> from = em.corners;
+    for (Vec3& c : from) c[0] += moved_from_dx_m;
+    SurfaceEmitterShape start = MakeShape(em.surface, from);
+    start.method = method;
+    EXPECT_TRUE(engine.SetSurfaceEmitter(0, start, light).ok());
+    UpdateSettled(&engine);
+  }
   EXPECT_TRUE(engine.SetSurfaceEmitter(0, shape, light).ok());
   engine.Update();
+  const int quick = engine.last_update_emitters_quick();
   const int32_t* got = engine.grid_illuminance(0).raw();
   const uint32_t points = engine.bake().grids[0].point_count();
 
@@ -106,6 +117,7 @@ GridError CompareGrid(const baker::Scene& scene, const Emitter& em, const double
   const Eigen::VectorXd fraction = CoveredFraction(scene, core->mesh, em);
   EXPECT_GT(fraction.sum(), 1.0);
   GridError worst;
+  worst.quick = quick;
   for (int c = 0; c < 3; ++c) {
     const Eigen::VectorXd exitance = core->hierarchical_solver->Solve(c, kPi * luminance[c] * fraction);
     const Eigen::VectorXd want = core->gather[0] * exitance;  // lux, every leaf
@@ -150,6 +162,25 @@ TEST(EmitterGrid, CeilingPanelMatchesTheFloat64Gather) {
                                    SurfaceEmitterMethod::kAdaptiveRefine);
   EXPECT_LE(ar.max, 0.02);
   EXPECT_LE(ar.mean, 0.002);
+}
+
+// Adaptive-refine moves against the same float64 gather, to the same bars:
+// 1.2 cm, within quick reach (1/8 of the table's source side, about 1.5 cm
+// here), answered without a sweep (EngineOptions::emitter_quick_changes);
+// 5 cm, beyond it, solved at once (a quick answer would be 0.30 % of peak
+// mean off there, measured).
+TEST(EmitterGrid, MovesOfTheCeilingPanelMatchTheFloat64GatherQuickOrNot) {
+  const double luminance[3] = {200, 120, 45};
+  const GridError near = CompareGrid(Cornell(), kCeiling, luminance, Hierarchical(),
+                                     SurfaceEmitterMethod::kAdaptiveRefine, -0.012);
+  EXPECT_EQ(near.quick, 1);
+  EXPECT_LE(near.max, 0.02);
+  EXPECT_LE(near.mean, 0.002);
+  const GridError far = CompareGrid(Cornell(), kCeiling, luminance, Hierarchical(),
+                                    SurfaceEmitterMethod::kAdaptiveRefine, -0.05);
+  EXPECT_EQ(far.quick, 0);
+  EXPECT_LE(far.max, 0.02);
+  EXPECT_LE(far.mean, 0.002);
 }
 
 TEST(EmitterGrid, WallWindowMatchesTheFloat64Gather) {

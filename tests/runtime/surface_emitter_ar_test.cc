@@ -318,32 +318,47 @@ TEST(SurfaceEmitterAr, SameBitsOnOneTwoAndThreeThreads) {
   }
 }
 
+// With every change solved at once, and with quick answers and their
+// settles (the default, EngineOptions::emitter_quick_changes).
 TEST(SurfaceEmitterAr, PlacementsAndMovesDoNotAllocate) {
-  Engine engine;
-  ASSERT_TRUE(engine.Open(BoxBake()).ok());
-  SurfaceEmitterShape shapes[2] = {MakeShape("ceiling", kBoxCeilingEmitter),
-                                   MakeShape("ceiling", {{0.35, 0.3, 1}, {0.75, 0.32, 1}, {0.65, 0.7, 1}})};
-  const LightQ12 light[3] = {Light(100), Light(90), Light(80)};
-  ASSERT_TRUE(engine.SetSurfaceEmitter(1, shapes[0], light).ok());  // warm up
-  engine.Update();
-  g_allocations = 0;
-  g_count_allocations = true;
-  int solved = 0;
-  bool ok = true;
-  for (int i = 0; i < 20; ++i) {
-    ok = ok && engine.SetSurfaceEmitter(i % 3, shapes[i & 1], light).ok();
+  for (const bool quick_changes : {false, true}) {
+    EngineOptions options;
+    options.emitter_quick_changes = quick_changes;
+    Engine engine;
+    ASSERT_TRUE(engine.Open(BoxBake(), options).ok());
+    SurfaceEmitterShape shapes[2] = {MakeShape("ceiling", kBoxCeilingEmitter),
+                                     MakeShape("ceiling", {{0.31, 0.3, 1}, {0.71, 0.32, 1}, {0.61, 0.7, 1}})};
+    const LightQ12 light[3] = {Light(100), Light(90), Light(80)};
+    ASSERT_TRUE(engine.SetSurfaceEmitter(1, shapes[0], light).ok());  // warm up
+    UpdateSettled(&engine);
+    g_allocations = 0;
+    g_count_allocations = true;
+    int solved = 0, quick = 0;
+    bool ok = true;
+    for (int i = 0; i < 20; ++i) {
+      ok = ok && engine.SetSurfaceEmitter(i % 3, shapes[i & 1], light).ok();
+      engine.Update();
+      solved += engine.last_update_emitters_solved();
+      quick += engine.last_update_emitters_quick();
+    }
+    ok = ok && engine.RemoveSurfaceEmitter(1).ok();
     engine.Update();
-    solved += engine.last_update_emitters_solved();
+    engine.Update();  // idle: settles what is left
+    const bool settled = engine.emitters_settled();
+    g_count_allocations = false;
+    EXPECT_TRUE(ok);
+    EXPECT_TRUE(settled);
+    EXPECT_EQ(g_allocations.load(), 0) << (quick_changes ? "quick answers" : "solved at once");
+    if (!quick_changes) {
+      // Each slot keeps its last two solutions (surface_emitters.h): slot 0
+      // solves both shapes, slot 1 had shape 0 from the warm-up and solves
+      // shape 1, slot 2 solves both; every later placement is a restore.
+      EXPECT_EQ(solved, 5);
+      EXPECT_EQ(quick, 0);
+    } else {
+      EXPECT_GT(quick, 0);  // moves answered from their start, settled by the restores' Updates
+    }
   }
-  ok = ok && engine.RemoveSurfaceEmitter(1).ok();
-  engine.Update();
-  g_count_allocations = false;
-  EXPECT_TRUE(ok);
-  // Each slot keeps its last two solutions (surface_emitters.h): slot 0
-  // solves both shapes, slot 1 had shape 0 from the warm-up and solves
-  // shape 1, slot 2 solves both; every later placement is a restore.
-  EXPECT_EQ(solved, 5);
-  EXPECT_EQ(g_allocations.load(), 0);
 }
 
 }  // namespace

@@ -100,9 +100,11 @@ TEST(SurfaceEmitterScenario, WindowsAppearAndOneGoesOffAgainstTheNaiveSolve) {
                 static_cast<long long>(want.rows()), engine.last_update_emitters_solved(),
                 engine.last_update_emitter_sweeps());
     // FE has no bar of its own (issue 15 reports it); these catch a broken
-    // solve: measured 0.36-0.5 % max, 0.05-0.08 % mean.
+    // solve: measured 0.36-0.5 % max, 0.05-0.08 % mean. The answer measured
+    // is the first one shown (a quick one for a new AR light).
     EXPECT_LE(worst_max, 0.01);
     EXPECT_LE(worst_mean, 0.002);
+    UpdateSettled(&engine);  // the next step starts from a still scene
   }
   EXPECT_EQ(engine.last_update_emitters_solved(), 0);  // switching off solves nothing
   // Off means gone: the bits of the east window alone.
@@ -111,7 +113,7 @@ TEST(SurfaceEmitterScenario, WindowsAppearAndOneGoesOffAgainstTheNaiveSolve) {
   ASSERT_TRUE(east_only.Open(Bake(engine.bake())).ok());
   for (int i = 0; i < east_only.luminaire_count(); ++i) ASSERT_TRUE(east_only.SetDimmer(i, Q1_15::FromRaw(0)).ok());
   ASSERT_TRUE(Place(&east_only, 1, kEast).ok());
-  east_only.Update();
+  UpdateSettled(&east_only);
   EXPECT_EQ(Luminance(east_only), after);
 }
 

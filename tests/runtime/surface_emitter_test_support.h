@@ -13,6 +13,7 @@
 #include "radiosity_vec.h"
 #include "relight/bake/bake.h"
 #include "relight/baker/scene.h"
+#include "relight/engine/engine.h"
 #include "relight/engine/surface_emitter.h"
 
 namespace relight::testing {
@@ -81,6 +82,14 @@ inline SurfaceEmitterShape MakeShape(const std::string& surface, const std::vect
     for (int i = 0; i < 3; ++i)
       shape.corners_q16[k][i] = static_cast<int32_t>(std::llround(corners[k][i] * 65536.0));
   return shape;
+}
+
+// Update(), then Update() again until no emitter is left a quick answer to
+// settle (EngineOptions::emitter_quick_changes): the state a still scene
+// reaches one idle frame later.
+inline void UpdateSettled(Engine* engine) {
+  engine->Update();
+  for (int i = 0; i < 4 && !engine->emitters_settled(); ++i) engine->Update();
 }
 
 }  // namespace relight::testing

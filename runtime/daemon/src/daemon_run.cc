@@ -78,8 +78,9 @@ Status Daemon::Run(const std::atomic<bool>& stop, std::atomic<bool>& reload) {
       const int64_t arrival = m.PollInputs(time_us, false);
       if (arrival > pending_arrival_us) pending_arrival_us = arrival;
     }
-    // Nothing moved since the last frame: send it again instead of redrawing it.
-    const bool render = m.ApplyFader(time_us) > 0 || !have_frame || m.force_render;
+    // Nothing moved since the last frame: send it again instead of redrawing
+    // it -- unless an emitter shows a quick answer, which this frame settles.
+    const bool render = m.ApplyFader(time_us) > 0 || !have_frame || m.force_render || !m.engine.emitters_settled();
     m.force_render = false;
     int64_t render_us = 0;
     if (render) {

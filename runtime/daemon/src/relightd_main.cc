@@ -170,9 +170,11 @@ int main(int argc, char** argv) {
   if (daemon.engine().emitter_bounce_sources() > 0) {
     relight::Log(relight::LogLevel::kInfo,
                  "relightd: surface emitters: later bounces of %d pieces of the surfaces tabulated at start-up "
-                 "(%.1f MB), so a new emitter's solve starts near its answer",
+                 "(%.1f MB), so a new emitter's solve starts near its answer; adaptive-refine moves within "
+                 "%.2f m of where a panel was last solved are shown at once and settled on the next idle frame",
                  daemon.engine().emitter_bounce_sources(),
-                 static_cast<double>(daemon.engine().emitter_bounce_table_size()) / (1 << 20));
+                 static_cast<double>(daemon.engine().emitter_bounce_table_size()) / (1 << 20),
+                 daemon.engine().emitter_quick_reach_q16() / 65536.0);
   }
 
   // systemd: READY=1 after the first frame, WATCHDOG=1 while frames flow (notify.h).

@@ -62,6 +62,7 @@ struct Engine::Impl {
     emitters.set_observer(&emitter_grids);
     StartEngineThreads(options.threads, work, lums.size(), &threads);
     emitters.PrecomputeBounces(options.emitter_bounce_table_bytes, &threads.pool);
+    emitters.set_quick_changes(options.emitter_quick_changes);
     return Status::Ok();
   }
   void ApplyPendingZoom(size_t index) {
@@ -116,6 +117,7 @@ void Engine::Impl::Update() {
   last_terms = RebuildLuminaires(&bake, &lums, &work, &threads);  // on all threads
   if (last_luminaires > 0) remix = true;
   last_emitters = emitters.SolvePending(&threads.pool);
+  if (last_emitters == 0) last_emitters = emitters.Settle(&threads.pool);  // no emitter changed
   if (last_emitters > 0) remix = true;
   if (remix) {
     RemixOnThreads(bake, lums, &work, mix.data(), &threads, &out);
@@ -358,6 +360,12 @@ int64_t Engine::emitter_bounce_table_size() const {
 int Engine::last_update_emitter_sweeps() const {
   return impl_ ? impl_->emitters.last_sweeps() : 0;
 }
+
+int32_t Engine::emitter_quick_reach_q16() const { return impl_ ? impl_->emitters.quick_reach_q16() : 0; }
+
+int Engine::last_update_emitters_quick() const { return impl_ ? impl_->emitters.last_quick() : 0; }
+
+bool Engine::emitters_settled() const { return impl_ ? impl_->emitters.settled() : true; }
 
 int Engine::last_emitter_refine_links() const {
   return impl_ ? impl_->emitters.last_refine_links() : 0;

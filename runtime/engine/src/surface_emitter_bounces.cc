@@ -57,6 +57,7 @@ void EmitterBounceTable::Partition(const BakeHierarchy& h, int64_t budget_bytes,
     }
     area *= 2;
   }
+  source_area_q32_ = area;
   source_node_.assign(count, kBakeNoIndex);
   for (uint32_t k = 0; k < n; ++k) {
     const uint32_t j = source_of_[k];
@@ -103,30 +104,52 @@ void EmitterBounceTable::Store(uint32_t j, const int64_t* solved, const int64_t*
   contraction_[j] = seen;
 }
 
-const SweepContraction* EmitterBounceTable::AddTo(const int64_t* coverage_q32, uint32_t root, int64_t* b) {
-  if (source_node_.empty() || root >= tree_end_.size()) return nullptr;
+void EmitterBounceTable::AddShares(const int64_t* coverage_q32, uint32_t root, int sign, uint32_t* first,
+                                   uint32_t* last) {
+  if (root >= tree_end_.size()) return;
   const BakeHierarchy& h = *h_;
-  uint32_t first = kBakeNoIndex, last = 0;
   for (uint32_t k = root; k < tree_end_[root]; ++k) {
     if (!h.leaf(k) || coverage_q32[k] == 0) continue;
     const uint32_t j = source_of_[k];
-    if (first == kBakeNoIndex || j < first) first = j;
-    if (j > last) last = j;
-    share_[j] += static_cast<Int128>(h.node_area[k]) * coverage_q32[k];
+    if (*first == kBakeNoIndex || j < *first) *first = j;
+    if (j > *last) *last = j;
+    share_[j] += sign * static_cast<Int128>(h.node_area[k]) * coverage_q32[k];
   }
+}
+
+const SweepContraction* EmitterBounceTable::AddTo(const int64_t* coverage_q32, uint32_t root, int64_t* b) {
+  if (source_node_.empty()) return nullptr;
+  uint32_t first = kBakeNoIndex, last = 0;
+  AddShares(coverage_q32, root, 1, &first, &last);
+  return AddSharesTimesTable(first, last, b);
+}
+
+void EmitterBounceTable::AddChange(const int64_t* now_q32, uint32_t now_root, const int64_t* before_q32,
+                                   uint32_t before_root, int64_t* b) {
+  if (source_node_.empty()) return;
+  uint32_t first = kBakeNoIndex, last = 0;
+  AddShares(now_q32, now_root, 1, &first, &last);
+  AddShares(before_q32, before_root, -1, &first, &last);
+  (void)AddSharesTimesTable(first, last, b);
+}
+
+const SweepContraction* EmitterBounceTable::AddSharesTimesTable(uint32_t first, uint32_t last, int64_t* b) {
   if (first == kBakeNoIndex) return nullptr;
+  const BakeHierarchy& h = *h_;
   const SweepContraction* hint = nullptr;
   Int128 largest = 0;
   const size_t count = leaves_.size();
   for (uint32_t j = first; j <= last; ++j) {
     if (share_[j] == 0) continue;
-    // The covered share of the source's area, UQ32 (<= 2^32).
+    // The covered share of the source's area, Q32 (|c| <= 2^32; < 0 only in
+    // AddChange, where the share before is taken away).
     const int64_t c = static_cast<int64_t>(DivRound(share_[j], static_cast<Int128>(h.node_area[source_node_[j]])));
     if (share_[j] > largest) {
       largest = share_[j];
       hint = contraction_[j].valid ? &contraction_[j] : nullptr;
     }
     share_[j] = 0;
+    if (c == 0) continue;
     const int shift = 32 - shift_[j];
     const int64_t half = shift > 0 ? int64_t{1} << (shift - 1) : 0;
     const int16_t* t16 = &table_[size_t{j} * count * 3];

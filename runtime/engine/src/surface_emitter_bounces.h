@@ -55,6 +55,8 @@ class EmitterBounceTable {
   uint32_t source_count() const { return static_cast<uint32_t>(source_node_.size()); }
   uint32_t source_node(uint32_t j) const { return source_node_[j]; }
   size_t bytes() const { return table_.size() * sizeof(int16_t); }
+  // The largest area a source may have (Q32 m^2; 0 without a table).
+  int64_t source_area_q32() const { return source_node_.empty() ? 0 : source_area_q32_; }
   // Coverage (UQ32 per node, leaves) of source j: 2^32 on its leaves, else 0.
   void UnitCoverage(uint32_t j, int64_t* coverage_q32) const;
   // Source j's later bounces: solved - start on the leaves (3 per node,
@@ -66,6 +68,12 @@ class EmitterBounceTable {
   // with the largest covered share (a hint for the first sweep's stop),
   // or null if none is valid or nothing is covered.
   const SweepContraction* AddTo(const int64_t* coverage_q32, uint32_t root, int64_t* b);
+  // b += the table's change from one coverage to another: per source the
+  // change of covered share times its later bounces, only where the share
+  // changed (an emitter moved within a source changes nothing). The roots
+  // may be different surfaces.
+  void AddChange(const int64_t* now_q32, uint32_t now_root, const int64_t* before_q32, uint32_t before_root,
+                 int64_t* b);
 
  private:
   const BakeHierarchy* h_ = nullptr;
@@ -75,7 +83,15 @@ class EmitterBounceTable {
   std::vector<uint32_t> leaves_;          // leaf nodes ascending; the table's leaf order
   std::vector<int16_t> table_;            // source-major: 3 per leaf
   std::vector<int8_t> shift_;             // per source, s
+  int64_t source_area_q32_ = 0;
   std::vector<SweepContraction> contraction_;
+  // share_[j] += sign x sum of area x coverage over root's covered leaves in
+  // source j; [first, last] widened to the sources touched.
+  void AddShares(const int64_t* coverage_q32, uint32_t root, int sign, uint32_t* first, uint32_t* last);
+  // b += share_[j] / area_j x T_j over [first, last], share_ cleared; the
+  // hint of the largest share (AddTo).
+  const SweepContraction* AddSharesTimesTable(uint32_t first, uint32_t last, int64_t* b);
+
   std::vector<Int128> share_;             // AddTo's scratch, per source: sum of area x coverage
 };
 

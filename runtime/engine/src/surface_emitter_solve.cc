@@ -306,7 +306,7 @@ void HierarchySolveQ32::SweepBlock(Sweep* sweep, int block) {
 
 int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra_irradiance_q32,
                                 int64_t* b, WorkerPool* pool, int64_t peak_floor_q32, const SweepContraction* hint,
-                                SweepContraction* seen) {
+                                SweepContraction* seen, int max_sweeps) {
   const SweepContraction given = hint != nullptr ? *hint : SweepContraction{};  // seen may be the hint
   hint = &given;
   if (seen != nullptr) *seen = SweepContraction{};
@@ -331,7 +331,7 @@ int HierarchySolveQ32::SolveRgb(const int64_t* emitted_q32, const int64_t* extra
   Int128 l1_prev[3] = {0, 0, 0};
   int64_t previous = 0;
   int sweep_count = 0;
-  while (sweep_count < kEmitterSolveMaxSweeps) {
+  while (sweep_count < max_sweeps) {
     ++sweep_count;
     RunOnBlocks(pool, &sweep, &HierarchySolveQ32::SweepBlock);
     // Every block's nodes into every other block's view, for the next sweep.

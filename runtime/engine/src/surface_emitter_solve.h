@@ -77,11 +77,13 @@ class HierarchySolveQ32 {
   // solve from a nearby start saw (SweepContraction); with it the rule may
   // stop after the first sweep, taking that solve's ratio of its first two
   // sweeps (at least 1/8) as this one's. seen: null, or where this solve's
-  // contraction goes (valid when it took two sweeps or more). Returns the
-  // sweeps it took.
+  // contraction goes (valid when it took two sweeps or more). max_sweeps 0:
+  // the set-up alone (the start's inner nodes pulled up and viewed, as a
+  // result: exitance_q24() and AddEmitted follow it). Returns the sweeps it
+  // took.
   int SolveRgb(const int64_t* emitted_q32, const int64_t* extra_irradiance_q32, int64_t* exitance_q32,
                WorkerPool* pool, int64_t peak_floor_q32 = 0, const SweepContraction* hint = nullptr,
-               SweepContraction* seen = nullptr);
+               SweepContraction* seen = nullptr, int max_sweeps = kEmitterSolveMaxSweeps);
   // The next SolveRgb starts from `previous`, the array the last SolveRgb
   // solved into, with only these leaves changed (a fractional-emissivity
   // move): its set-up then pulls only their ancestors instead of the whole

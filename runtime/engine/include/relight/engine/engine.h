@@ -54,6 +54,14 @@ struct EngineOptions {
   // solve then starts near its answer and takes fewer sweeps. Scenes too
   // large for it get coarser pieces; <= 0: no table.
   int64_t emitter_bounce_table_bytes = kDefaultEmitterBounceTableBytes;
+  // Answer now, settle later (needs the table above): an adaptive-refine move
+  // is shown at once from its start -- the previous solution, the exact
+  // change of emission and first bounce, the table's change of later
+  // bounces, without a sweep -- and solved in full at the next Update() that
+  // changes no emitter (an idle frame). Only within 1/8 of the table's
+  // source side of where the emitter was last solved in full (further moves
+  // are solved at once). false: every change is solved in full at once.
+  bool emitter_quick_changes = true;
   // false: the bake's radiosity hierarchy is neither read nor kept and no
   // emitter buffers are sized (SetSurfaceEmitter answers kUnsupported). On a
   // hierarchical bake that is most of the engine's memory: relightd opens
@@ -169,7 +177,12 @@ class Engine {
   Status RemoveSurfaceEmitter(int slot);
 
   // Brings the outputs up to date with the state. Integer-only, no allocation.
+  // An Update() that changes no emitter settles the emitters shown from their
+  // quick answer (EngineOptions::emitter_quick_changes).
   void Update();
+  // False while an emitter's light is a quick answer the next Update() will
+  // settle: a caller that updates only on input should call Update() again.
+  bool emitters_settled() const;
 
   // Per vertex RGB luminance, LightQ12 cd/m^2 (1 LSB = 1/4096 cd/m^2); an
   // empty view when closed. Views stay valid until the next Open.
@@ -188,10 +201,15 @@ class Engine {
   // Emitters solved by the last Update() and the sweeps they took (3 channels a sweep).
   int last_update_emitters_solved() const;
   int last_update_emitter_sweeps() const;
+  // Of those, answered from their start without a sweep (left to settle).
+  int last_update_emitters_quick() const;
   // The later-bounce table built at Open (EngineOptions::emitter_bounce_table_bytes):
   // how many coarse sources it holds and its size in bytes (0, 0 without one).
   int emitter_bounce_sources() const;
   int64_t emitter_bounce_table_size() const;
+  // How far an adaptive-refine emitter may move from where it was last
+  // solved in full and still be answered without a sweep, Q16 metres (0: never).
+  int32_t emitter_quick_reach_q16() const;
   // New links the last adaptive-refine placement made.
   int last_emitter_refine_links() const;
 
