@@ -327,7 +327,7 @@ TEST(SurfaceEmitterAr, PlacementsAndMovesDoNotAllocate) {
     Engine engine;
     ASSERT_TRUE(engine.Open(BoxBake(), options).ok());
     SurfaceEmitterShape shapes[2] = {MakeShape("ceiling", kBoxCeilingEmitter),
-                                     MakeShape("ceiling", {{0.31, 0.3, 1}, {0.71, 0.32, 1}, {0.61, 0.7, 1}})};
+                                     MakeShape("ceiling", {{0.305, 0.3, 1}, {0.705, 0.32, 1}, {0.605, 0.7, 1}})};
     const LightQ12 light[3] = {Light(100), Light(90), Light(80)};
     ASSERT_TRUE(engine.SetSurfaceEmitter(1, shapes[0], light).ok());  // warm up
     UpdateSettled(&engine);

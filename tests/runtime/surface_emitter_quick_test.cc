@@ -63,8 +63,8 @@ class SurfaceEmitterQuick : public ::testing::Test {
   Engine dragged_, placed_;
 };
 
-// A drag of 1 cm steps (within quick reach: 1/8 of the table's source side,
-// 2.7 cm in this 1 m box): every move a quick answer, within 2e-3 of peak
+// A drag of 2 mm steps (within quick reach: 1/32 of the table's source
+// side, 6.8 mm in this 1 m box): every move a quick answer, within 2e-3 of peak
 // max, 2e-4 mean of a solve from nothing (10 cm moves, every one quick,
 // measured 1.0e-3 and 8.4e-5), and what it settles to within the solver's
 // own bars (1e-3, 1e-4). A move beyond reach is solved in full.
@@ -77,7 +77,7 @@ TEST_F(SurfaceEmitterQuick, ADragNearItsAnchorIsAnsweredWithoutSweepsAndSettlesW
   std::string kinds;
   double quick_max = 0, quick_mean = 0, full_max = 0, full_mean = 0;
   for (int step = 1; step <= 6; ++step) {
-    const double dx = 0.01 * ((step / 2) % 2), dy = 0.01 * (((step + 1) / 2) % 2) + 0.002 * step;
+    const double dx = 0.002 * ((step / 2) % 2), dy = 0.002 * (((step + 1) / 2) % 2) + 0.0005 * step;
     ASSERT_TRUE(dragged_.SetSurfaceEmitter(0, Ceiling(dx, dy), kLight).ok());
     dragged_.Update();
     ASSERT_EQ(dragged_.last_update_emitters_solved(), 1);
@@ -91,14 +91,14 @@ TEST_F(SurfaceEmitterQuick, ADragNearItsAnchorIsAnsweredWithoutSweepsAndSettlesW
     worst_max = std::max(worst_max, max_rel);
     worst_mean = std::max(worst_mean, mean_rel);
   }
-  std::printf("[ measured ] 1 cm drag, q = quick answer, F = full solve: %s; against solves from nothing: "
+  std::printf("[ measured ] 2 mm drag, q = quick answer, F = full solve: %s; against solves from nothing: "
               "quick max %.2e mean %.2e of peak\n", kinds.c_str(), quick_max, quick_mean);
   EXPECT_EQ(kinds, "qqqqqq");
   EXPECT_LE(quick_max, 2e-3);
   EXPECT_LE(quick_mean, 2e-4);
 
   // One more quick move, then an idle Update settles it to a full solve's answer.
-  const double dx = 0.006, dy = 0.012;
+  const double dx = 0.002, dy = 0.004;
   ASSERT_TRUE(dragged_.SetSurfaceEmitter(0, Ceiling(dx, dy), kLight).ok());
   dragged_.Update();
   ASSERT_EQ(dragged_.last_update_emitters_quick(), 1);

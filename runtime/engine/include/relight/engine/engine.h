@@ -58,7 +58,7 @@ struct EngineOptions {
   // is shown at once from its start -- the previous solution, the exact
   // change of emission and first bounce, the table's change of later
   // bounces, without a sweep -- and solved in full at the next Update() that
-  // changes no emitter (an idle frame). Only within 1/8 of the table's
+  // changes no emitter (an idle frame). Only within 1/32 of the table's
   // source side of where the emitter was last solved in full (further moves
   // are solved at once). false: every change is solved in full at once.
   bool emitter_quick_changes = true;
