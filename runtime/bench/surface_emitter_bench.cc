@@ -16,8 +16,8 @@
 //   emitter_quick_changes: quick_share counts them; mean_ms is the mean)
 //   BM_EmitterDrag        AR round a 10 cm circle in 1.6 cm steps (a drag at
 //                         frame rate), each SetSurfaceEmitter + Update() timed
-//   BM_EmitterSettle      an idle Update() after an AR move answered quickly:
-//                         the full solve from where it stands (untimed: the move)
+//   BM_EmitterSettle      an idle Update() after a drag step answered quickly:
+//                         the full solve from where it stands (untimed: the step)
 //   BM_EmitterLuminance   SetSurfaceEmitterLuminance + Update(): a rescale
 //   (Place and Move10cm run with fractional emissivity, ar:0, and adaptive
 //   refine, ar:1: the refine's new link factors, surface_emitter_refine.h,
@@ -203,16 +203,11 @@ void BM_EmitterDrag(benchmark::State& state) {
 void BM_EmitterSettle(benchmark::State& state) {
   Samples samples;
   int i = 0, settles = 0;
-  relight::SurfaceEmitterShape square[4];
-  for (int k = 0; k < 4; ++k) {
-    square[k] = g_square[k];
-    square[k].method = relight::SurfaceEmitterMethod::kAdaptiveRefine;
-  }
-  (void)g_engine->SetSurfaceEmitter(0, square[0], kWhite);
+  (void)g_engine->SetSurfaceEmitter(0, g_circle[0], kWhite);
   g_engine->Update();
   g_engine->Update();
   for (auto _ : state) {
-    (void)g_engine->SetSurfaceEmitter(0, square[++i % 4], kWhite);  // untimed
+    (void)g_engine->SetSurfaceEmitter(0, g_circle[++i % kCircleSteps], kWhite);  // one drag step, untimed
     g_engine->Update();
     const bool quick = !g_engine->emitters_settled();
     samples.Time(state, [] {});
