@@ -128,6 +128,22 @@ TEST_F(SurfaceEmitterQuick, ADragNearItsAnchorIsAnsweredWithoutSweepsAndSettlesW
   EXPECT_TRUE(dragged_.emitters_settled());
 }
 
+// Moved back onto its stored solution, the slot is anchored there again: a
+// small step from it is a quick answer, though the last full solve was 10 cm off.
+TEST_F(SurfaceEmitterQuick, AMoveBackAnchorsTheQuickAnswersWhereItRestored) {
+  ASSERT_TRUE(dragged_.SetSurfaceEmitter(0, Ceiling(0, 0), kLight).ok());
+  dragged_.Update();
+  ASSERT_TRUE(dragged_.SetSurfaceEmitter(0, Ceiling(0.1, 0), kLight).ok());  // beyond reach: solved
+  dragged_.Update();
+  ASSERT_EQ(dragged_.last_update_emitters_quick(), 0);
+  ASSERT_TRUE(dragged_.SetSurfaceEmitter(0, Ceiling(0, 0), kLight).ok());  // back: restored
+  dragged_.Update();
+  ASSERT_EQ(dragged_.last_update_emitters_solved(), 0);
+  ASSERT_TRUE(dragged_.SetSurfaceEmitter(0, Ceiling(0.002, 0), kLight).ok());
+  dragged_.Update();
+  EXPECT_EQ(dragged_.last_update_emitters_quick(), 1);
+}
+
 // Quick answers need the table and the method: FE, no table, or the option
 // off solve every change at once.
 TEST_F(SurfaceEmitterQuick, OnlyAdaptiveRefineWithATableAndTheOptionOnAnswersQuickly) {

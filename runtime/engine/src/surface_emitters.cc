@@ -94,6 +94,9 @@ Status SurfaceEmitters::Place(int slot, const SurfaceEmitterShape& shape, Worker
   if (s.before.solved && same(s.before)) {
     std::swap(s.now, s.before);  // back where it came from: the stored bits
     s.restored = true;
+    // A settled solution anchors the quick answers that start from it.
+    if (s.now.settled)
+      for (int a = 0; a < 3; ++a) s.anchor_q16[a] = s.now.centroid_q16[a];
     return Status::Ok();
   }
   if (s.now.solved) std::swap(s.now, s.before);  // keep the last solved one to start from
