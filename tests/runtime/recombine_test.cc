@@ -13,6 +13,7 @@
 #include "recombine.h"
 #include "recombine_avx2.h"
 #include "recombine_dispatch.h"
+#include "recombine_vnni.h"
 #include "relight/baker/photometry.h"
 #include "relight/engine/sh_eval.h"
 #include "relight/base/sh_index.h"
@@ -229,6 +230,36 @@ TEST(RecombineQ12, SaturatesExactlyAndNeverWraps) {
           EXPECT_EQ(out[c], c == 0 ? kMax : kMin) << "shift " << shift;
         }
       }
+    }
+  }
+}
+
+// The AVX-512 finish of a block (shift, round, clamp to int32) gives the
+// scalar formula's integers at every shift, tail length and the accumulator's
+// extremes (|acc| < 2^55), and writes nothing past the block.
+TEST(RecombineQ12, VectorFinishIsTheScalarRoundShiftAndClamp) {
+  if (!CpuSupportsSimdLevel(SimdLevel::kAvx512Vnni)) GTEST_SKIP() << "no AVX-512 VNNI on this CPU";
+  std::mt19937_64 rng(99);
+  constexpr int64_t kBound = (int64_t{1} << 55) - 1;
+  std::uniform_int_distribution<int64_t> any(-kBound, kBound);
+  for (uint32_t elements = 0; elements <= 19; ++elements) {
+    for (int shift : {0, 1, 7, 23, 24, 31, 32, 40, 62}) {
+      std::vector<int64_t> acc(elements);
+      for (uint32_t i = 0; i < elements; ++i) {
+        const int64_t pick[] = {kBound, -kBound, (int64_t{1} << 31) - 1, -(int64_t{1} << 31), int64_t{1} << 31, -1};
+        acc[i] = i % 3 == 0 ? pick[(i / 3) % 6] : any(rng) >> (rng() % 40);
+      }
+      std::vector<int32_t> out(elements + 8, 12345);
+      FinishBlockAvx512(acc.data(), elements, shift, out.data());
+      for (uint32_t i = 0; i < elements; ++i) {
+        const int64_t half = shift > 0 ? int64_t{1} << (shift - 1) : 0;
+        const int64_t v = (acc[i] + half) >> shift;
+        const int32_t want = v > std::numeric_limits<int32_t>::max()   ? std::numeric_limits<int32_t>::max()
+                             : v < std::numeric_limits<int32_t>::min() ? std::numeric_limits<int32_t>::min()
+                                                                       : static_cast<int32_t>(v);
+        ASSERT_EQ(out[i], want) << "elements " << elements << " shift " << shift << " i " << i;
+      }
+      for (uint32_t i = elements; i < out.size(); ++i) ASSERT_EQ(out[i], 12345) << "wrote past the block";
     }
   }
 }

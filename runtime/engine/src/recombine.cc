@@ -51,10 +51,11 @@ void RecombineVector(const int16_t* basis, uint32_t receiver_count, const uint16
     const uint64_t stride = static_cast<uint64_t>(receiver_count) * 3;
     if (avx512) {
       AccumulateTermsAvx512Vnni(rows, stride, terms, term_count, pairs, 3 * n, scratch);
+      FinishBlockAvx512(scratch, 3 * n, shift, out + static_cast<size_t>(r0) * 3);
     } else {
       AccumulateTermsAvx2(rows, stride, terms, term_count, k, pairs, 3 * n, scratch);
+      FinishBlock(scratch, 3 * n, shift, out + static_cast<size_t>(r0) * 3);
     }
-    FinishBlock(scratch, 3 * n, shift, out + static_cast<size_t>(r0) * 3);
   }
 }
 

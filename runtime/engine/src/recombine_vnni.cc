@@ -137,11 +137,27 @@ RELIGHT_TARGET_AVX512_VNNI void AccumulateTermsAvx512Vnni(const int16_t* basis, 
   }
 }
 
+RELIGHT_TARGET_AVX512_VNNI void FinishBlockAvx512(const int64_t* acc, uint32_t elements, int shift, int32_t* dst) {
+  const __m512i half = _mm512_set1_epi64(shift > 0 ? int64_t{1} << (shift - 1) : 0);
+  const __m128i count = _mm_cvtsi32_si128(shift);
+  uint32_t i = 0;
+  for (; i + 8 <= elements; i += 8) {
+    const __m512i v = _mm512_sra_epi64(_mm512_add_epi64(_mm512_loadu_si512(acc + i), half), count);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + i), _mm512_cvtsepi64_epi32(v));
+  }
+  if (i < elements) {
+    const __mmask8 lanes = static_cast<__mmask8>((1u << (elements - i)) - 1);
+    const __m512i v = _mm512_sra_epi64(_mm512_add_epi64(_mm512_maskz_loadu_epi64(lanes, acc + i), half), count);
+    _mm512_mask_cvtsepi64_storeu_epi32(dst + i, lanes, v);
+  }
+}
+
 }  // namespace relight
 
 #else  // no x86-64 vector path on this target: RecombineQ12 stays scalar
 
 namespace relight {
+void FinishBlockAvx512(const int64_t*, uint32_t, int, int32_t*) {}
 void AccumulateTermsAvx512Vnni(const int16_t*, uint64_t, const uint16_t*, uint32_t, const TermPairVectors*,
                                uint32_t, int64_t*) {}
 }  // namespace relight

@@ -23,4 +23,10 @@ void AccumulateTermsAvx512Vnni(const int16_t* basis, uint64_t stride, const uint
                                uint32_t term_count, const TermPairVectors* pairs, uint32_t elements,
                                int64_t* acc);
 
+// dst[i] = SaturateI32((acc[i] + half) >> shift), half = 2^(shift - 1) (0 for
+// shift 0), for i in [0, elements): FinishBlock's (recombine.cc) integers,
+// 8 a step (vpsraq, then vpmovsqd, which clamps to int32 as SaturateI32
+// does). |acc| < 2^55 (recombine.h), so acc + half cannot overflow.
+void FinishBlockAvx512(const int64_t* acc, uint32_t elements, int shift, int32_t* dst);
+
 }  // namespace relight

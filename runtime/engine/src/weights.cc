@@ -6,6 +6,7 @@
 #include "recombine_avx2.h"
 #include "relight/base/sh_index.h"
 #include "relight/base/fixed_ops.h"
+#include "relight/base/status.h"
 
 namespace relight {
 
@@ -67,46 +68,42 @@ int64_t MultiplierExponent(int32_t exponent, int shift) {
 
 int ChannelMultipliersQ12(const int64_t* coef_q16, int term_count, const QuantScale* basis_scale,
                           int32_t* k_out) {
+  RELIGHT_CHECK(term_count >= 0 && term_count <= ShTermCount(kMaxShDegree));
   // The recombination kernel's vector path takes |k| < 2^24 (recombine_avx2.h).
   constexpr int64_t kLimit = int64_t{1} << kVectorMultiplierBits;
+  const int values = term_count * 3;
+  // Each product once (a compressed basis's projection calls this on every
+  // aim change: three passes over the Int128 products were 3 % of it).
+  Int128 product[3 * ShTermCount(kMaxShDegree)];
   // |coef * mantissa| < 2^b gives |k| < 2^(b + exponent - 34 + F): F <= 58 - b - exponent
   // keeps that at or below 2^24.
   int64_t f = kMaxRecombineShift;
-  for (int t = 0; t < term_count; ++t) {
-    for (int c = 0; c < 3; ++c) {
-      const QuantScale& s = basis_scale[t * 3 + c];
-      const Int128 p = static_cast<Int128>(coef_q16[t]) * s.mantissa;
-      if (p == 0) continue;
-      const int64_t bound = 58 - BitLength128(Abs128(p)) - static_cast<int64_t>(s.exponent);
-      if (bound < f) f = bound;
-    }
+  for (int i = 0; i < values; ++i) {
+    const QuantScale& s = basis_scale[i];
+    const Int128 p = static_cast<Int128>(coef_q16[i / 3]) * s.mantissa;
+    product[i] = p;
+    if (p == 0) continue;
+    const int64_t bound = 58 - BitLength128(Abs128(p)) - static_cast<int64_t>(s.exponent);
+    if (bound < f) f = bound;
   }
   if (f < 0) f = 0;
-  // Rounding can still reach exactly 2^24: then one bit less.
+  // Rounding can still reach exactly 2^24: then one bit less and again.
   for (;;) {
     bool fits = true;
-    for (int i = 0; i < term_count * 3 && fits; ++i) {
-      const QuantScale& s = basis_scale[i];
-      const Int128 p = static_cast<Int128>(coef_q16[i / 3]) * s.mantissa;
-      const int64_t k = RoundShiftSat64(p, MultiplierExponent(s.exponent, static_cast<int>(f)));
-      fits = k < kLimit && k > -kLimit;
+    for (int i = 0; i < values; ++i) {
+      int64_t k = RoundShiftSat64(product[i], MultiplierExponent(basis_scale[i].exponent, static_cast<int>(f)));
+      fits = fits && k < kLimit && k > -kLimit;
+      // Only when even F = 0 cannot fit 2^24 (outputs that saturate for any
+      // sizeable q): keep what int32 holds; the kernel then runs its scalar path.
+      constexpr int64_t kInt32Limit = int64_t{1} << 31;
+      if (k >= kInt32Limit) k = kInt32Limit - 1;
+      if (k <= -kInt32Limit) k = -(kInt32Limit - 1);
+      k_out[i] = static_cast<int32_t>(k);
     }
     if (fits || f == 0) break;
     --f;
   }
-  const int shift = static_cast<int>(f);
-  for (int i = 0; i < term_count * 3; ++i) {
-    const QuantScale& s = basis_scale[i];
-    const Int128 p = static_cast<Int128>(coef_q16[i / 3]) * s.mantissa;
-    int64_t k = RoundShiftSat64(p, MultiplierExponent(s.exponent, shift));
-    // Only when even F = 0 cannot fit 2^24 (outputs that saturate for any
-    // sizeable q): keep what int32 holds; the kernel then runs its scalar path.
-    constexpr int64_t kInt32Limit = int64_t{1} << 31;
-    if (k >= kInt32Limit) k = kInt32Limit - 1;
-    if (k <= -kInt32Limit) k = -(kInt32Limit - 1);
-    k_out[i] = static_cast<int32_t>(k);
-  }
-  return shift;
+  return static_cast<int>(f);
 }
 
 }  // namespace relight
