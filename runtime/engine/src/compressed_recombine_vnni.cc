@@ -59,6 +59,16 @@ RELIGHT_TARGET_AVX512_VNNI inline void StoreRgb(const __m512i* rgb, uint32_t cou
   }
 }
 
+// A full tile's R, G, B (16 receivers each, in order) -> 48 interleaved
+// int32, from values: StoreRgb's pointer made GCC put its three vectors on
+// the stack and read them back (stop 44).
+RELIGHT_TARGET_AVX512_VNNI inline void StoreRgb16(__m512i r, __m512i g, __m512i b, int32_t* out) {
+  for (int v = 0; v < 3; ++v) {
+    const __m512i t = _mm512_permutex2var_epi32(r, Load(kIndices.rg[v]), g);
+    _mm512_storeu_si512(out + 16 * v, _mm512_permutex2var_epi32(t, Load(kIndices.b[v]), b));
+  }
+}
+
 // Loads of one tile's weights as the int16 pairs vpdpwssd takes, from int16
 // or int8 weights (sign-extended: the same values). Pairs: 16 receivers'
 // pair p (32 weights), or `count` receivers' (masked). Last: an odd r's
@@ -117,7 +127,27 @@ RELIGHT_TARGET_AVX512_VNNI inline void AccumulateTile(const W* tile, uint32_t co
   }
 }
 
-// Two full tiles (32 receivers) into a[3] and b[3]: one loop over the
+// One channel's finish (compressed_recombine.h): mean + (acc + half) >> s
+// for s >= 0 (half is already in acc); for s < 0 (a bright cluster: the
+// multipliers took a left shift) mean + acc 2^-s in int64, saturated to
+// int32 like the scalar path.
+struct ChannelFinish {
+  __m512i mean, mean64;
+  __m128i shift;
+  bool left = false;
+};
+
+RELIGHT_TARGET_AVX512_VNNI inline __m512i Finish(__m512i acc, const ChannelFinish& f) {
+  if (!f.left) return _mm512_add_epi32(f.mean, _mm512_sra_epi32(acc, f.shift));
+  // |acc| < 2^30, shifted by at most 31, plus |mean| < 2^30: within int64.
+  const __m512i wide_lo = _mm512_cvtepi32_epi64(_mm512_castsi512_si256(acc));
+  const __m512i wide_hi = _mm512_cvtepi32_epi64(_mm512_extracti64x4_epi64(acc, 1));
+  const __m256i lo = _mm512_cvtsepi64_epi32(_mm512_add_epi64(f.mean64, _mm512_sll_epi64(wide_lo, f.shift)));
+  const __m256i hi = _mm512_cvtsepi64_epi32(_mm512_add_epi64(f.mean64, _mm512_sll_epi64(wide_hi, f.shift)));
+  return _mm512_inserti64x4(_mm512_castsi256_si512(lo), hi, 1);
+}
+
+// Two full tiles (32 receivers), finished and stored at out: one loop over the
 // component pairs for both, so six vpdpwssd chains run side by side. The
 // accumulators are named variables, not arrays: with arrays GCC 12 copied
 // each one to another register and back around every vpdpwssd, which put
@@ -126,7 +156,8 @@ RELIGHT_TARGET_AVX512_VNNI inline void AccumulateTile(const W* tile, uint32_t co
 template <typename W>
 RELIGHT_TARGET_AVX512_VNNI inline void TwoFullTiles(const W* tile, uint32_t components,
                                                     const __m512i (*k)[kMaxCompressedComponents / 2 + 1],
-                                                    const __m512i* half, __m512i* a, __m512i* b) {
+                                                    const __m512i* half, const ChannelFinish* finish,
+                                                    int32_t* out) {
   const uint32_t pairs = components / 2;
   const W* second = tile + 16 * components;
   __m512i a0 = half[0], a1 = half[1], a2 = half[2];
@@ -151,28 +182,8 @@ RELIGHT_TARGET_AVX512_VNNI inline void TwoFullTiles(const W* tile, uint32_t comp
     a2 = _mm512_dpwssd_epi32(a2, va, k2);
     b2 = _mm512_dpwssd_epi32(b2, vb, k2);
   }
-  a[0] = a0, a[1] = a1, a[2] = a2;
-  b[0] = b0, b[1] = b1, b[2] = b2;
-}
-
-// One channel's finish (compressed_recombine.h): mean + (acc + half) >> s
-// for s >= 0 (half is already in acc); for s < 0 (a bright cluster: the
-// multipliers took a left shift) mean + acc 2^-s in int64, saturated to
-// int32 like the scalar path.
-struct ChannelFinish {
-  __m512i mean, mean64;
-  __m128i shift;
-  bool left = false;
-};
-
-RELIGHT_TARGET_AVX512_VNNI inline __m512i Finish(__m512i acc, const ChannelFinish& f) {
-  if (!f.left) return _mm512_add_epi32(f.mean, _mm512_sra_epi32(acc, f.shift));
-  // |acc| < 2^30, shifted by at most 31, plus |mean| < 2^30: within int64.
-  const __m512i wide_lo = _mm512_cvtepi32_epi64(_mm512_castsi512_si256(acc));
-  const __m512i wide_hi = _mm512_cvtepi32_epi64(_mm512_extracti64x4_epi64(acc, 1));
-  const __m256i lo = _mm512_cvtsepi64_epi32(_mm512_add_epi64(f.mean64, _mm512_sll_epi64(wide_lo, f.shift)));
-  const __m256i hi = _mm512_cvtsepi64_epi32(_mm512_add_epi64(f.mean64, _mm512_sll_epi64(wide_hi, f.shift)));
-  return _mm512_inserti64x4(_mm512_castsi256_si512(lo), hi, 1);
+  StoreRgb16(Finish(a0, finish[0]), Finish(a1, finish[1]), Finish(a2, finish[2]), out);
+  StoreRgb16(Finish(b0, finish[0]), Finish(b1, finish[1]), Finish(b2, finish[2]), out + 48);
 }
 
 // Every shift, negative ones included (the 256-bit bodies leave those to the
@@ -198,16 +209,8 @@ RELIGHT_TARGET_AVX512_VNNI void ClusterAvx512Vnni(const W* w, uint32_t n, uint32
   }
   uint32_t i0 = 0;
   // Two full tiles a step: six independent vpdpwssd chains.
-  for (; i0 + 32 <= n; i0 += 32) {
-    __m512i a[3], b[3];
-    TwoFullTiles(w + size_t{i0} * components, components, k, half, a, b);
-    for (int ch = 0; ch < 3; ++ch) {
-      a[ch] = Finish(a[ch], finish[ch]);
-      b[ch] = Finish(b[ch], finish[ch]);
-    }
-    StoreRgb(a, 16, out + size_t{i0} * 3);
-    StoreRgb(b, 16, out + size_t{i0} * 3 + 48);
-  }
+  for (; i0 + 32 <= n; i0 += 32)
+    TwoFullTiles(w + size_t{i0} * components, components, k, half, finish, out + size_t{i0} * 3);
   // The rest one tile at a time: a full one, then a short last one.
   for (; i0 < n; i0 += 16) {
     const uint32_t count = n - i0 < 16 ? n - i0 : 16;
