@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "compressed_recombine.h"
+#include "compressed_recombine_interleave.h"
+#include "compressed_multipliers_avx512.h"
 #include "compressed_recombine_avx2.h"
 #include "compressed_recombine_vnni.h"
 #include "compressed_tiles.h"
@@ -227,6 +229,74 @@ TEST(CompressedClusterTest, MultipliersRoundWithTheLargestShiftUpToInt32Extremes
   }
   EXPECT_EQ(m.shift[2], 31);
   EXPECT_EQ(m.k[2], 0);
+}
+
+// The AVX-512 multipliers (compressed_multipliers_avx512.h) are the packed
+// pairs of the scalar ones, bit for bit, and refuse exactly the clusters with
+// a negative shift: random projections of every magnitude, and dividends on
+// both sides of every multiple of the weight of 1 up to the limit (the
+// multiply-and-shift division's worst places).
+TEST(CompressedClusterTest, VectorMultipliersArePairsOfTheScalarOnes) {
+  if (!CpuSupportsSimdLevel(SimdLevel::kAvx512Vnni)) GTEST_SKIP() << "no AVX-512 VNNI on this CPU";
+  int taken = 0, refused = 0;
+  const auto check = [&](const std::vector<int32_t>& projection, uint32_t r, int32_t one) {
+    ClusterMultipliers m{};
+    ClusterMultipliersQ12(projection.data(), r, one, &m);
+    int32_t want[3][kMaxCompressedComponents / 2 + 1];
+    cpca_simd::PairMultipliers(m, r, want);
+    PackedClusterMultipliers got{};
+    const bool negative = m.shift[0] < 0 || m.shift[1] < 0 || m.shift[2] < 0;
+    const bool ok = ClusterMultipliersAvx512(projection.data(), r, one, &got);
+    ASSERT_EQ(ok, !negative) << "r " << r << " one " << one;
+    if (!ok) return ++refused, void();
+    ++taken;
+    for (int ch = 0; ch < 3; ++ch) {
+      ASSERT_EQ(got.mean[ch], m.mean[ch]);
+      ASSERT_EQ(got.shift[ch], m.shift[ch]);
+      for (uint32_t p = 0; p < (r + 1) / 2; ++p)
+        ASSERT_EQ(got.packed[ch][p], want[ch][p]) << "r " << r << " one " << one << " ch " << ch << " pair " << p;
+    }
+  };
+  std::mt19937_64 rng(31);
+  for (const int32_t one : {int32_t{kCompressedWeightOne}, int32_t{kCompressedWeightOne8}}) {
+    for (uint32_t r : {0u, 1u, 2u, 3u, 7u, 16u, 17u, 31u, 32u, 64u}) {
+      for (int trial = 0; trial < 200; ++trial) {
+        const int bits = static_cast<int>(rng() % 32);
+        std::vector<int32_t> projection(3 * (r + 1));
+        for (int32_t& p : projection) {
+          const int64_t v = static_cast<int64_t>(rng() % (uint64_t{1} << bits)) * (rng() % 2 ? 1 : -1);
+          p = trial % 17 == 0 ? 0 : static_cast<int32_t>(v);
+        }
+        if (trial % 23 == 1 && r > 0) projection[3] = INT32_MIN;
+        if (trial % 29 == 2 && r > 0) projection[4] = INT32_MAX;
+        check(projection, r, one);
+      }
+    }
+    // Shift 0 (the largest component at limit x one), the others' dividends
+    // q one - 1, q one, q one + one - 1 for every q up to the limit.
+    const uint32_t r = one == kCompressedWeightOne8 ? 64 : 4;
+    const int64_t limit = CompressedMultiplierLimit(r, one);
+    std::vector<int64_t> magnitudes;
+    for (int64_t q = 0; q <= limit; ++q)
+      for (const int64_t x : {q * one - 1, q * one, q * one + one - 1})
+        if (x - one / 2 >= 0 && x - one / 2 <= limit * one) magnitudes.push_back(x - one / 2);
+    std::vector<int32_t> projection(3 * (r + 1), 0);
+    for (int ch = 0; ch < 3; ++ch) projection[3 + ch] = static_cast<int32_t>(limit * one) * (ch == 1 ? -1 : 1);
+    size_t next = 0;
+    while (next < magnitudes.size()) {
+      for (uint32_t j = 1; j < r; ++j)
+        for (int ch = 0; ch < 3; ++ch) {
+          const int64_t a = magnitudes[next < magnitudes.size() ? next++ : magnitudes.size() - 1];
+          projection[3 * (1 + j) + ch] = static_cast<int32_t>(ch == 2 ? -a : a);
+        }
+      ClusterMultipliers m{};
+      ClusterMultipliersQ12(projection.data(), r, one, &m);
+      ASSERT_EQ(m.shift[0], 0);
+      check(projection, r, one);
+    }
+  }
+  EXPECT_GT(taken, 1000);
+  EXPECT_GT(refused, 10);
 }
 
 // The shift ClusterMultipliersQ12 picks from bit lengths is the one the

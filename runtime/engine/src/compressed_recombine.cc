@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "compressed_multipliers_avx512.h"
 #include "compressed_recombine_avx2.h"
 #include "compressed_recombine_vnni.h"
 #include "compressed_tiles.h"
@@ -151,6 +152,13 @@ void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, int32
   MultipliersFor<0>(projection, components, weight_one, m);
 }
 
+int ClusterShiftQ12(int64_t largest, uint32_t components, int32_t weight_one) {
+  const int64_t limit = CompressedMultiplierLimit(components, weight_one);
+  if (weight_one == kCompressedWeightOne8) return LargestShift<kCompressedWeightOne8>(largest, limit, weight_one);
+  if (weight_one == kCompressedWeightOne) return LargestShift<kCompressedWeightOne>(largest, limit, weight_one);
+  return LargestShift<0>(largest, limit, weight_one);
+}
+
 void CompressedClusterScalarQ12(const int16_t* w, uint32_t n, uint32_t components,
                                 const ClusterMultipliers& m, int32_t* out) {
   ClusterTail(w, 0, n, components, m, out);
@@ -192,12 +200,24 @@ uint32_t RecombineCompressedQ12(const BakeCompressedBasis& cpca, int terms, cons
   const uint32_t used = RecombineQ12(cpca.vectors.data(), static_cast<uint32_t>(terms), vectors,
                                      k_terms, shift, scratch, scratch_len, projection);
   ClusterMultipliers m;
+  PackedClusterMultipliers packed;
   const int32_t one = CompressedWeightOne(cpca.weight_bits);
   const bool bytes = cpca.weight_bits == 8;
+  const bool avx512 = ActiveSimdLevel() == SimdLevel::kAvx512Vnni;
   for (uint32_t c = 0; c < cpca.cluster_count(); ++c) {
     const uint32_t start = cpca.cluster_start[c], n = cpca.cluster_start[c + 1] - start;
-    ClusterMultipliersQ12(projection + size_t{c} * (r + 1) * 3, r, one, &m);
     const size_t first = size_t{start} * r;
+    const int32_t* cluster_projection = projection + size_t{c} * (r + 1) * 3;
+    // The usual case on AVX-512: the multipliers in vectors, no negative shift.
+    if (avx512 && ClusterMultipliersAvx512(cluster_projection, r, one, &packed)) {
+      if (bytes) {
+        CompressedClusterPackedAvx512VnniQ12(cpca.weights8.data() + first, n, r, packed, out + size_t{start} * 3);
+      } else {
+        CompressedClusterPackedAvx512VnniQ12(cpca.weights.data() + first, n, r, packed, out + size_t{start} * 3);
+      }
+      continue;
+    }
+    ClusterMultipliersQ12(cluster_projection, r, one, &m);
     if (bytes) {
       CompressedClusterQ12(cpca.weights8.data() + first, n, r, m, out + size_t{start} * 3);
     } else {

@@ -43,6 +43,9 @@ int32_t CompressedMultiplierLimit(uint32_t components, int32_t weight_one = kCom
 //   in int64; the 256-bit paths leave them to the scalar one.
 void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, int32_t weight_one,
                            ClusterMultipliers* m);
+// The shift ClusterMultipliersQ12 gives a channel whose largest |P_j| is
+// `largest` (0 <= largest <= 2^31).
+int ClusterShiftQ12(int64_t largest, uint32_t components, int32_t weight_one);
 
 // Receivers [0, n) of one cluster, weights in tiles (compressed_tiles.h;
 // w_ij below is w[TiledWeightOffset(n, r, i, j)]):

@@ -190,12 +190,10 @@ RELIGHT_TARGET_AVX512_VNNI inline void TwoFullTiles(const W* tile, uint32_t comp
 // scalar path).
 template <typename W>
 RELIGHT_TARGET_AVX512_VNNI void ClusterAvx512Vnni(const W* w, uint32_t n, uint32_t components,
-                                                 const ClusterMultipliers& m, int32_t* out) {
-  int32_t packed[3][kMaxCompressedComponents / 2 + 1];
-  PairMultipliers(m, components, packed);
+                                                 const PackedClusterMultipliers& m, int32_t* out) {
   __m512i k[3][kMaxCompressedComponents / 2 + 1];
   for (int ch = 0; ch < 3; ++ch) {
-    for (uint32_t p = 0; p < (components + 1) / 2; ++p) k[ch][p] = _mm512_set1_epi32(packed[ch][p]);
+    for (uint32_t p = 0; p < (components + 1) / 2; ++p) k[ch][p] = _mm512_set1_epi32(m.packed[ch][p]);
   }
   __m512i half[3];
   ChannelFinish finish[3];
@@ -219,6 +217,16 @@ RELIGHT_TARGET_AVX512_VNNI void ClusterAvx512Vnni(const W* w, uint32_t n, uint32
     for (int ch = 0; ch < 3; ++ch) a[ch] = Finish(a[ch], finish[ch]);
     StoreRgb(a, count, out + size_t{i0} * 3);
   }
+}
+
+inline PackedClusterMultipliers Packed(const ClusterMultipliers& m, uint32_t components) {
+  PackedClusterMultipliers p;
+  PairMultipliers(m, components, p.packed);
+  for (int ch = 0; ch < 3; ++ch) {
+    p.mean[ch] = m.mean[ch];
+    p.shift[ch] = m.shift[ch];
+  }
+  return p;
 }
 
 template <typename W>
@@ -276,10 +284,18 @@ RELIGHT_TARGET_AVX_VNNI void ClusterAvxVnni(const W* w, uint32_t n, uint32_t com
 
 void CompressedClusterAvx512VnniQ12(const int16_t* w, uint32_t n, uint32_t components, const ClusterMultipliers& m,
                                     int32_t* out) {
-  ClusterAvx512Vnni(w, n, components, m, out);
+  ClusterAvx512Vnni(w, n, components, Packed(m, components), out);
 }
 void CompressedClusterAvx512VnniQ12(const int8_t* w, uint32_t n, uint32_t components, const ClusterMultipliers& m,
                                     int32_t* out) {
+  ClusterAvx512Vnni(w, n, components, Packed(m, components), out);
+}
+void CompressedClusterPackedAvx512VnniQ12(const int16_t* w, uint32_t n, uint32_t components,
+                                          const PackedClusterMultipliers& m, int32_t* out) {
+  ClusterAvx512Vnni(w, n, components, m, out);
+}
+void CompressedClusterPackedAvx512VnniQ12(const int8_t* w, uint32_t n, uint32_t components,
+                                          const PackedClusterMultipliers& m, int32_t* out) {
   ClusterAvx512Vnni(w, n, components, m, out);
 }
 void CompressedClusterAvxVnniQ12(const int16_t* w, uint32_t n, uint32_t components, const ClusterMultipliers& m,
@@ -297,6 +313,10 @@ void CompressedClusterAvxVnniQ12(const int8_t* w, uint32_t n, uint32_t component
 
 namespace relight {
 void CompressedClusterAvx512VnniQ12(const int16_t*, uint32_t, uint32_t, const ClusterMultipliers&, int32_t*) {}
+void CompressedClusterPackedAvx512VnniQ12(const int16_t*, uint32_t, uint32_t, const PackedClusterMultipliers&,
+                                          int32_t*) {}
+void CompressedClusterPackedAvx512VnniQ12(const int8_t*, uint32_t, uint32_t, const PackedClusterMultipliers&,
+                                          int32_t*) {}
 void CompressedClusterAvx512VnniQ12(const int8_t*, uint32_t, uint32_t, const ClusterMultipliers&, int32_t*) {}
 void CompressedClusterAvxVnniQ12(const int16_t*, uint32_t, uint32_t, const ClusterMultipliers&, int32_t*) {}
 void CompressedClusterAvxVnniQ12(const int8_t*, uint32_t, uint32_t, const ClusterMultipliers&, int32_t*) {}

@@ -32,6 +32,23 @@ void CompressedClusterAvx512VnniQ12(const int16_t* w, uint32_t n, uint32_t compo
 // [0, n - n % 16) (the full tiles), shifts >= 0 only; the caller does the tail.
 void CompressedClusterAvxVnniQ12(const int16_t* w, uint32_t n, uint32_t components,
                                  const ClusterMultipliers& m, int32_t* out);
+// One cluster's multipliers in the form the AVX-512 body takes: per channel
+// the pairs (K_2p, K_2p+1) packed as compressed_recombine_interleave.h's
+// PackPair (an odd r's last K paired with 0), the mean and the shift: what
+// PairMultipliers makes of a ClusterMultipliers (compressed_multipliers_avx512.h
+// makes it straight from the projection).
+struct PackedClusterMultipliers {
+  int32_t packed[3][kMaxCompressedComponents / 2 + 1];
+  int32_t mean[3];
+  int shift[3];
+};
+
+// CompressedClusterAvx512VnniQ12 from packed multipliers.
+void CompressedClusterPackedAvx512VnniQ12(const int16_t* w, uint32_t n, uint32_t components,
+                                          const PackedClusterMultipliers& m, int32_t* out);
+void CompressedClusterPackedAvx512VnniQ12(const int8_t* w, uint32_t n, uint32_t components,
+                                          const PackedClusterMultipliers& m, int32_t* out);
+
 // Both bodies also over 8-bit weights: a sign-extending load in front of the
 // same vpdpwssd (the int16 pairs are the same values).
 void CompressedClusterAvx512VnniQ12(const int8_t* w, uint32_t n, uint32_t components,
