@@ -103,27 +103,27 @@ RELIGHT_TARGET_AVX512_VNNI inline __m512i LoadLast(const int8_t* p, uint32_t cou
 template <typename W>
 RELIGHT_TARGET_AVX512_VNNI inline void AccumulateTile(const W* tile, uint32_t count,
                                                       uint32_t components,
-                                                      const __m512i (*k)[kMaxCompressedComponents / 2 + 1],
+                                                      const int32_t (*k)[kMaxCompressedComponents / 2 + 1],
                                                       __m512i* acc) {
   const uint32_t pairs = components / 2;
   if (count == 16) {
     for (uint32_t p = 0; p < pairs; ++p) {
       const __m512i v = LoadPairs(tile + 32 * p);
-      for (int ch = 0; ch < 3; ++ch) acc[ch] = _mm512_dpwssd_epi32(acc[ch], v, k[ch][p]);
+      for (int ch = 0; ch < 3; ++ch) acc[ch] = _mm512_dpwssd_epi32(acc[ch], v, _mm512_set1_epi32(k[ch][p]));
     }
     if (components % 2 != 0) {
       const __m512i v = LoadLast(tile + 32 * pairs);
-      for (int ch = 0; ch < 3; ++ch) acc[ch] = _mm512_dpwssd_epi32(acc[ch], v, k[ch][pairs]);
+      for (int ch = 0; ch < 3; ++ch) acc[ch] = _mm512_dpwssd_epi32(acc[ch], v, _mm512_set1_epi32(k[ch][pairs]));
     }
     return;
   }
   for (uint32_t p = 0; p < pairs; ++p) {
     const __m512i v = LoadPairs(tile + size_t{2 * count} * p, count);
-    for (int ch = 0; ch < 3; ++ch) acc[ch] = _mm512_dpwssd_epi32(acc[ch], v, k[ch][p]);
+    for (int ch = 0; ch < 3; ++ch) acc[ch] = _mm512_dpwssd_epi32(acc[ch], v, _mm512_set1_epi32(k[ch][p]));
   }
   if (components % 2 != 0) {
     const __m512i v = LoadLast(tile + size_t{2 * count} * pairs, count);
-    for (int ch = 0; ch < 3; ++ch) acc[ch] = _mm512_dpwssd_epi32(acc[ch], v, k[ch][pairs]);
+    for (int ch = 0; ch < 3; ++ch) acc[ch] = _mm512_dpwssd_epi32(acc[ch], v, _mm512_set1_epi32(k[ch][pairs]));
   }
 }
 
@@ -155,7 +155,7 @@ RELIGHT_TARGET_AVX512_VNNI inline __m512i Finish(__m512i acc, const ChannelFinis
 // stop 44).
 template <typename W>
 RELIGHT_TARGET_AVX512_VNNI inline void TwoFullTiles(const W* tile, uint32_t components,
-                                                    const __m512i (*k)[kMaxCompressedComponents / 2 + 1],
+                                                    const int32_t (*k)[kMaxCompressedComponents / 2 + 1],
                                                     const __m512i* half, const ChannelFinish* finish,
                                                     int32_t* out) {
   const uint32_t pairs = components / 2;
@@ -164,7 +164,7 @@ RELIGHT_TARGET_AVX512_VNNI inline void TwoFullTiles(const W* tile, uint32_t comp
   __m512i b0 = half[0], b1 = half[1], b2 = half[2];
   for (uint32_t p = 0; p < pairs; ++p) {
     const __m512i va = LoadPairs(tile + 32 * p), vb = LoadPairs(second + 32 * p);
-    const __m512i k0 = k[0][p], k1 = k[1][p], k2 = k[2][p];
+    const __m512i k0 = _mm512_set1_epi32(k[0][p]), k1 = _mm512_set1_epi32(k[1][p]), k2 = _mm512_set1_epi32(k[2][p]);
     a0 = _mm512_dpwssd_epi32(a0, va, k0);
     b0 = _mm512_dpwssd_epi32(b0, vb, k0);
     a1 = _mm512_dpwssd_epi32(a1, va, k1);
@@ -174,7 +174,8 @@ RELIGHT_TARGET_AVX512_VNNI inline void TwoFullTiles(const W* tile, uint32_t comp
   }
   if (components % 2 != 0) {
     const __m512i va = LoadLast(tile + 32 * pairs), vb = LoadLast(second + 32 * pairs);
-    const __m512i k0 = k[0][pairs], k1 = k[1][pairs], k2 = k[2][pairs];
+    const __m512i k0 = _mm512_set1_epi32(k[0][pairs]), k1 = _mm512_set1_epi32(k[1][pairs]),
+                  k2 = _mm512_set1_epi32(k[2][pairs]);
     a0 = _mm512_dpwssd_epi32(a0, va, k0);
     b0 = _mm512_dpwssd_epi32(b0, vb, k0);
     a1 = _mm512_dpwssd_epi32(a1, va, k1);
@@ -191,10 +192,9 @@ RELIGHT_TARGET_AVX512_VNNI inline void TwoFullTiles(const W* tile, uint32_t comp
 template <typename W>
 RELIGHT_TARGET_AVX512_VNNI void ClusterAvx512Vnni(const W* w, uint32_t n, uint32_t components,
                                                  const PackedClusterMultipliers& m, int32_t* out) {
-  __m512i k[3][kMaxCompressedComponents / 2 + 1];
-  for (int ch = 0; ch < 3; ++ch) {
-    for (uint32_t p = 0; p < (components + 1) / 2; ++p) k[ch][p] = _mm512_set1_epi32(m.packed[ch][p]);
-  }
+  // The multipliers are broadcast where vpdpwssd reads them (an embedded
+  // {1to16} operand), not first written out as 64-byte vectors.
+  const int32_t(*k)[kMaxCompressedComponents / 2 + 1] = m.packed;
   __m512i half[3];
   ChannelFinish finish[3];
   for (int ch = 0; ch < 3; ++ch) {
