@@ -147,6 +147,19 @@ RELIGHT_TARGET_AVX512_VNNI inline __m512i Finish(__m512i acc, const ChannelFinis
   return _mm512_inserti64x4(_mm512_castsi256_si512(lo), hi, 1);
 }
 
+// One component pair of both tiles (va, vb: their weights) into the six chains.
+RELIGHT_TARGET_AVX512_VNNI __attribute__((always_inline)) inline void PairStep(
+    __m512i va, __m512i vb, const int32_t (*k)[kMaxCompressedComponents / 2 + 1], uint32_t p, __m512i& a0,
+    __m512i& a1, __m512i& a2, __m512i& b0, __m512i& b1, __m512i& b2) {
+  const __m512i k0 = _mm512_set1_epi32(k[0][p]), k1 = _mm512_set1_epi32(k[1][p]), k2 = _mm512_set1_epi32(k[2][p]);
+  a0 = _mm512_dpwssd_epi32(a0, va, k0);
+  b0 = _mm512_dpwssd_epi32(b0, vb, k0);
+  a1 = _mm512_dpwssd_epi32(a1, va, k1);
+  b1 = _mm512_dpwssd_epi32(b1, vb, k1);
+  a2 = _mm512_dpwssd_epi32(a2, va, k2);
+  b2 = _mm512_dpwssd_epi32(b2, vb, k2);
+}
+
 // Two full tiles (32 receivers), finished and stored at out: one loop over the
 // component pairs for both, so six vpdpwssd chains run side by side. The
 // accumulators are named variables, not arrays: with arrays GCC 12 copied
@@ -162,27 +175,10 @@ RELIGHT_TARGET_AVX512_VNNI inline void TwoFullTiles(const W* tile, uint32_t comp
   const W* second = tile + 16 * components;
   __m512i a0 = half[0], a1 = half[1], a2 = half[2];
   __m512i b0 = half[0], b1 = half[1], b2 = half[2];
-  for (uint32_t p = 0; p < pairs; ++p) {
-    const __m512i va = LoadPairs(tile + 32 * p), vb = LoadPairs(second + 32 * p);
-    const __m512i k0 = _mm512_set1_epi32(k[0][p]), k1 = _mm512_set1_epi32(k[1][p]), k2 = _mm512_set1_epi32(k[2][p]);
-    a0 = _mm512_dpwssd_epi32(a0, va, k0);
-    b0 = _mm512_dpwssd_epi32(b0, vb, k0);
-    a1 = _mm512_dpwssd_epi32(a1, va, k1);
-    b1 = _mm512_dpwssd_epi32(b1, vb, k1);
-    a2 = _mm512_dpwssd_epi32(a2, va, k2);
-    b2 = _mm512_dpwssd_epi32(b2, vb, k2);
-  }
-  if (components % 2 != 0) {
-    const __m512i va = LoadLast(tile + 32 * pairs), vb = LoadLast(second + 32 * pairs);
-    const __m512i k0 = _mm512_set1_epi32(k[0][pairs]), k1 = _mm512_set1_epi32(k[1][pairs]),
-                  k2 = _mm512_set1_epi32(k[2][pairs]);
-    a0 = _mm512_dpwssd_epi32(a0, va, k0);
-    b0 = _mm512_dpwssd_epi32(b0, vb, k0);
-    a1 = _mm512_dpwssd_epi32(a1, va, k1);
-    b1 = _mm512_dpwssd_epi32(b1, vb, k1);
-    a2 = _mm512_dpwssd_epi32(a2, va, k2);
-    b2 = _mm512_dpwssd_epi32(b2, vb, k2);
-  }
+  for (uint32_t p = 0; p < pairs; ++p)
+    PairStep(LoadPairs(tile + 32 * p), LoadPairs(second + 32 * p), k, p, a0, a1, a2, b0, b1, b2);
+  if (components % 2 != 0)
+    PairStep(LoadLast(tile + 32 * pairs), LoadLast(second + 32 * pairs), k, pairs, a0, a1, a2, b0, b1, b2);
   StoreRgb16(Finish(a0, finish[0]), Finish(a1, finish[1]), Finish(a2, finish[2]), out);
   StoreRgb16(Finish(b0, finish[0]), Finish(b1, finish[1]), Finish(b2, finish[2]), out + 48);
 }
