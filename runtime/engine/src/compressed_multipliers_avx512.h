@@ -10,10 +10,10 @@
 //   shift[ch] = ClusterShiftQ12 of the channel's largest |P_j| (scalar);
 //   K_j = min(floor((|P_j| 2^s + one / 2) / one), limit) with P_j's sign,
 // the division as a multiply by ceil(2^q / one) and a right shift by q
-// (q = 38 for one = 127, 45 for 16383), exact for every dividend below 2^31
-// and 2^31 (see the .cc). A dividend here is below (limit + 1) x one < 2^28
-// whenever the shift is >= 0, since the shift is the largest for which the
-// channel's largest value stays within the limit.
+// (q = 38 for one = 127, 45 for 16383), exact for every dividend below
+// 4 x 2^29 (see the .cc). A dividend here is below (limit + 1) x one < 2^28
+// plus one / 2 whenever the shift is >= 0, since the shift keeps the
+// channel's largest value within the limit.
 #pragma once
 
 #include <cstdint>

@@ -6,7 +6,8 @@
 //      is RecombineQ12 (recombine.h) with the usual per-term multipliers
 //      (weights.h): the value in LightQ12 of each vector at this look;
 //   2. per cluster and channel, turn the r component values into int16
-//      multipliers K_j and one shift s (ClusterMultipliersQ12);
+//      multipliers K_j and one shift s (ClusterMultipliersQ12; on AVX-512
+//      the same integers in vectors, compressed_multipliers_avx512.h);
 //   3. per receiver, a dot product of length r: out = mean + (sum_j q_j K_j) >> s.
 // Cost ∝ C (r + 1) (N+1)^2 + receivers x r, not receivers x (N+1)^2.
 // Integer-only, allocation-free (caller-owned spans), thread-safe.
