@@ -15,7 +15,6 @@
 #include <vector>
 
 #include "compressed_recombine.h"
-#include "compressed_recombine_interleave.h"
 #include "compressed_multipliers_avx512.h"
 #include "compressed_recombine_avx2.h"
 #include "compressed_recombine_vnni.h"
@@ -242,8 +241,12 @@ TEST(CompressedClusterTest, VectorMultipliersArePairsOfTheScalarOnes) {
   const auto check = [&](const std::vector<int32_t>& projection, uint32_t r, int32_t one) {
     ClusterMultipliers m{};
     ClusterMultipliersQ12(projection.data(), r, one, &m);
-    int32_t want[3][kMaxCompressedComponents / 2 + 1];
-    cpca_simd::PairMultipliers(m, r, want);
+    // The pairs as the kernel packs them: K_2p low 16 bits, K_2p+1 high (0 past r).
+    const auto pair = [&](int ch, uint32_t p) {
+      const uint32_t lo = static_cast<uint16_t>(m.k[ch * r + 2 * p]);
+      const uint32_t hi = 2 * p + 1 < r ? static_cast<uint16_t>(m.k[ch * r + 2 * p + 1]) : 0u;
+      return static_cast<int32_t>((hi << 16) | lo);
+    };
     PackedClusterMultipliers got{};
     const bool negative = m.shift[0] < 0 || m.shift[1] < 0 || m.shift[2] < 0;
     const bool ok = ClusterMultipliersAvx512(projection.data(), r, one, &got);
@@ -254,7 +257,7 @@ TEST(CompressedClusterTest, VectorMultipliersArePairsOfTheScalarOnes) {
       ASSERT_EQ(got.mean[ch], m.mean[ch]);
       ASSERT_EQ(got.shift[ch], m.shift[ch]);
       for (uint32_t p = 0; p < (r + 1) / 2; ++p)
-        ASSERT_EQ(got.packed[ch][p], want[ch][p]) << "r " << r << " one " << one << " ch " << ch << " pair " << p;
+        ASSERT_EQ(got.packed[ch][p], pair(ch, p)) << "r " << r << " one " << one << " ch " << ch << " pair " << p;
     }
   };
   std::mt19937_64 rng(31);

@@ -9,10 +9,10 @@
 // x < 2^29 and M < 2^32, so x M < 2^61 (vpmuludq, 32 x 32 -> 64).
 #include "compressed_multipliers_avx512.h"
 
-#include "compressed_recombine_interleave.h"
-
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #include <immintrin.h>
+
+#include "compressed_recombine_interleave.h"  // x86-64 only (immintrin.h)
 #define RELIGHT_HAVE_AVX512_PATH 1
 // GCC 12's AVX-512 headers fill unused merge operands with
 // _mm512_undefined_*(), which -Wmaybe-uninitialized and -Wuninitialized
