@@ -30,8 +30,6 @@ namespace relight {
 
 namespace {
 
-constexpr int32_t kMeanLimit = (int32_t{1} << 30) - 1;
-
 // The projection's values after the mean, component j's channel ch at
 // 3 j + ch, sixteen a vector: vector c's lane l is channel (c + l) mod 3
 // (16 = 1 mod 3). kChannelLanes[c mod 3][ch]: the lanes of channel ch.
@@ -70,8 +68,7 @@ RELIGHT_TARGET_AVX512 bool Multipliers(const int32_t* projection, uint32_t compo
   for (int ch = 0; ch < 3; ++ch) {
     shift[ch] = ClusterShiftQ12(_mm512_reduce_max_epu32(largest[ch]), components, kOne);
     if (shift[ch] < 0) return false;
-    const int32_t mean = projection[ch];
-    m->mean[ch] = mean > kMeanLimit ? kMeanLimit : (mean < -kMeanLimit ? -kMeanLimit : mean);
+    m->mean[ch] = ClusterMeanQ12(projection[ch]);
     m->shift[ch] = shift[ch];
   }
   alignas(64) int32_t k[3 * kMaxCompressedComponents];

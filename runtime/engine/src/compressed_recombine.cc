@@ -124,8 +124,7 @@ template <int64_t kOne>
 void MultipliersFor(const int32_t* projection, uint32_t components, int32_t weight_one, ClusterMultipliers* m) {
   const int64_t limit = CompressedMultiplierLimit(components, weight_one);
   for (int ch = 0; ch < 3; ++ch) {
-    const int32_t mean = projection[ch];
-    m->mean[ch] = mean > kMeanLimit ? kMeanLimit : (mean < -kMeanLimit ? -kMeanLimit : mean);
+    m->mean[ch] = ClusterMeanQ12(projection[ch]);
     int64_t largest = 0;
     for (uint32_t j = 0; j < components; ++j) {
       const int64_t p = projection[(1 + j) * 3 + ch];
@@ -150,6 +149,10 @@ void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, int32
   if (weight_one == kCompressedWeightOne8) return MultipliersFor<kCompressedWeightOne8>(projection, components, weight_one, m);
   if (weight_one == kCompressedWeightOne) return MultipliersFor<kCompressedWeightOne>(projection, components, weight_one, m);
   MultipliersFor<0>(projection, components, weight_one, m);
+}
+
+int32_t ClusterMeanQ12(int32_t projected_mean) {
+  return projected_mean > kMeanLimit ? kMeanLimit : (projected_mean < -kMeanLimit ? -kMeanLimit : projected_mean);
 }
 
 int ClusterShiftQ12(int64_t largest, uint32_t components, int32_t weight_one) {
@@ -190,6 +193,24 @@ uint64_t CompressedProjectionValues(const BakeCompressedBasis& cpca) {
   return 3 * uint64_t{cpca.cluster_count()} * (cpca.components + 1);
 }
 
+namespace {
+
+// Steps 2 and 3 for one cluster. On AVX-512 the multipliers come from
+// vectors straight in the kernel's packed form; a cluster with a negative
+// shift, or another level, takes the scalar multipliers.
+template <typename W>
+void ClusterFromProjection(const int32_t* projection, const W* w, uint32_t n, uint32_t r, int32_t one, bool avx512,
+                           int32_t* out) {
+  PackedClusterMultipliers packed;
+  if (avx512 && ClusterMultipliersAvx512(projection, r, one, &packed))
+    return CompressedClusterPackedAvx512VnniQ12(w, n, r, packed, out);
+  ClusterMultipliers m;
+  ClusterMultipliersQ12(projection, r, one, &m);
+  ClusterOnActivePath(w, n, r, m, out);
+}
+
+}  // namespace
+
 uint32_t RecombineCompressedQ12(const BakeCompressedBasis& cpca, int terms, const int64_t* coef_q16,
                                 int32_t* k_terms, int64_t* scratch, uint32_t scratch_len,
                                 int32_t* projection, int32_t* out) {
@@ -199,29 +220,17 @@ uint32_t RecombineCompressedQ12(const BakeCompressedBasis& cpca, int terms, cons
   const int shift = ChannelMultipliersQ12(coef_q16, terms, cpca.vector_scale.data(), k_terms);
   const uint32_t used = RecombineQ12(cpca.vectors.data(), static_cast<uint32_t>(terms), vectors,
                                      k_terms, shift, scratch, scratch_len, projection);
-  ClusterMultipliers m;
-  PackedClusterMultipliers packed;
   const int32_t one = CompressedWeightOne(cpca.weight_bits);
-  const bool bytes = cpca.weight_bits == 8;
   const bool avx512 = ActiveSimdLevel() == SimdLevel::kAvx512Vnni;
   for (uint32_t c = 0; c < cpca.cluster_count(); ++c) {
     const uint32_t start = cpca.cluster_start[c], n = cpca.cluster_start[c + 1] - start;
     const size_t first = size_t{start} * r;
     const int32_t* cluster_projection = projection + size_t{c} * (r + 1) * 3;
-    // The usual case on AVX-512: the multipliers in vectors, no negative shift.
-    if (avx512 && ClusterMultipliersAvx512(cluster_projection, r, one, &packed)) {
-      if (bytes) {
-        CompressedClusterPackedAvx512VnniQ12(cpca.weights8.data() + first, n, r, packed, out + size_t{start} * 3);
-      } else {
-        CompressedClusterPackedAvx512VnniQ12(cpca.weights.data() + first, n, r, packed, out + size_t{start} * 3);
-      }
-      continue;
-    }
-    ClusterMultipliersQ12(cluster_projection, r, one, &m);
-    if (bytes) {
-      CompressedClusterQ12(cpca.weights8.data() + first, n, r, m, out + size_t{start} * 3);
+    int32_t* cluster_out = out + size_t{start} * 3;
+    if (cpca.weight_bits == 8) {
+      ClusterFromProjection(cluster_projection, cpca.weights8.data() + first, n, r, one, avx512, cluster_out);
     } else {
-      CompressedClusterQ12(cpca.weights.data() + first, n, r, m, out + size_t{start} * 3);
+      ClusterFromProjection(cluster_projection, cpca.weights.data() + first, n, r, one, avx512, cluster_out);
     }
   }
   return used;

@@ -45,8 +45,10 @@ int32_t CompressedMultiplierLimit(uint32_t components, int32_t weight_one = kCom
 void ClusterMultipliersQ12(const int32_t* projection, uint32_t components, int32_t weight_one,
                            ClusterMultipliers* m);
 // The shift ClusterMultipliersQ12 gives a channel whose largest |P_j| is
-// `largest` (0 <= largest <= 2^31).
+// `largest` (0 <= largest <= 2^31), and the mean it keeps (the projected
+// mean clamped to +-(2^30 - 1)).
 int ClusterShiftQ12(int64_t largest, uint32_t components, int32_t weight_one);
+int32_t ClusterMeanQ12(int32_t projected_mean);
 
 // Receivers [0, n) of one cluster, weights in tiles (compressed_tiles.h;
 // w_ij below is w[TiledWeightOffset(n, r, i, j)]):

@@ -188,8 +188,8 @@ RELIGHT_TARGET_AVX512_VNNI inline void TwoFullTiles(const W* tile, uint32_t comp
 template <typename W>
 RELIGHT_TARGET_AVX512_VNNI void ClusterAvx512Vnni(const W* w, uint32_t n, uint32_t components,
                                                  const PackedClusterMultipliers& m, int32_t* out) {
-  // The multipliers are broadcast where vpdpwssd reads them (an embedded
-  // {1to16} operand), not first written out as 64-byte vectors.
+  // The multipliers are broadcast from the packed int32 where vpdpwssd
+  // needs them (a vpbroadcastd load), not first written out as 64-byte vectors.
   const int32_t(*k)[kMaxCompressedComponents / 2 + 1] = m.packed;
   __m512i half[3];
   ChannelFinish finish[3];
