@@ -2,6 +2,8 @@
 // into the runtime's integer formats, or solves the exact reference.
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <stdexcept>
 
 #include "bake_hierarchy.h"
 #include "grid_links.h"
@@ -122,6 +124,11 @@ struct Baker::Impl {
   Progress progress;
   std::unique_ptr<BakerCore> core;
   BakeReport report;
+  // The hierarchy and links as the bake stores them, made as soon as the
+  // solver is built so that the solver's own copy of the links can go
+  // before the luminaires' solves (docs/venue.md, "Memory"); handed to the
+  // one whole bake this Baker makes.
+  std::optional<relight::BakeHierarchy> stored_hierarchy;
 };
 
 Baker::Baker(const Scene& scene, const BakeOptions& options)
@@ -147,6 +154,10 @@ Baker::Baker(const Scene& scene, const BakeOptions& options)
       ChooseZoomDegrees(&chosen, options.direct_mode.value_or(DirectModeKind::kExact));
   impl_->core = BuildBakerCore(chosen, options, &impl_->progress);
   if (scene.luminaires.empty() && !impl_->core->hierarchical_solver) nothing_to_bake();
+  if (HierarchicalSolver* solver = impl_->core->hierarchical_solver.get(); solver && options.store_hierarchy) {
+    impl_->stored_hierarchy = MakeBakeHierarchy(impl_->core->mesh, solver->hierarchy(), solver->links());
+    solver->ReleaseLinks();
+  }
   impl_->report = impl_->core->report;
   impl_->report.zoom_degrees = zoom_degrees;
 }
@@ -160,6 +171,9 @@ relight::Bake Baker::Bake() {
 relight::Bake Baker::BakePart(const std::function<bool(size_t)>& mine, bool whole) {
   const Stopwatch total;
   const BakerCore& core = *impl_->core;
+  if (whole && core.hierarchical_solver && core.options.store_hierarchy && !impl_->stored_hierarchy) {
+    throw std::logic_error("relight-bake: a Baker stores its hierarchy in one whole bake only");
+  }
   const Scene& scene = core.scene;
   relight::Bake bake;
   bake.scene_name = scene.name;
@@ -223,8 +237,9 @@ relight::Bake Baker::BakePart(const std::function<bool(size_t)>& mine, bool whol
     impl_->report.sweeps = core.hierarchical_solver->max_sweeps_used();
     impl_->report.residual = core.hierarchical_solver->max_residual();
     if (whole && core.options.store_hierarchy) {
-      bake.hierarchy = MakeBakeHierarchy(core.mesh, core.hierarchical_solver->hierarchy(),
-                                         core.hierarchical_solver->links());
+      // Moved, not copied (0.9 GB on the 100k venue): a Baker makes one whole bake.
+      bake.hierarchy = std::move(*impl_->stored_hierarchy);
+      impl_->stored_hierarchy.reset();
       if (!core.gather.empty()) {
         const Stopwatch grid_time;
         MakeGridLinks(core.mesh, core.hierarchical_solver->hierarchy(), core.gather,

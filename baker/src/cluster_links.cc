@@ -45,6 +45,23 @@ double SurfaceFactor(const Hierarchy& h, const ClusterTree& tree, uint32_t node,
 
 namespace {
 
+// What the walk decides, before any ray: candidate links (a, b; a < b) and
+// surface pairs, 8 bytes each. A link's direction and factors (a 48-byte
+// ClusterLink) are made afterwards and kept only where rays join the pair:
+// on the 100k venue's second pass 60 million candidates, 8.7 million kept.
+// Held as ClusterLinks from the start, the candidates took 2.9 GB, twice at
+// the join, and their capacity stayed resident for the rest of the bake
+// (docs/venue.md, "Memory of the cluster walk").
+struct WalkFound {
+  std::vector<NodePair> links;
+  std::vector<NodePair> node_pairs;
+  size_t pairs_visited = 0;
+};
+
+// Candidates given their factors per block, so the 48-byte links exist
+// only a block at a time before the ones without light are dropped.
+constexpr size_t kFactorBlock = size_t{1} << 20;
+
 class ClusterRefiner {
  public:
   ClusterRefiner(const Hierarchy& h, const ClusterTree& tree, const std::vector<double>& brightness,
@@ -68,7 +85,7 @@ class ClusterRefiner {
     }
   }
 
-  void Visit(uint32_t x, uint32_t y, ClusteredRefinement* out) {
+  void Visit(uint32_t x, uint32_t y, WalkFound* out) {
     Walk(x, y, out, [&](uint32_t a, uint32_t b) { Visit(a, b, out); });
   }
 
@@ -88,10 +105,10 @@ class ClusterRefiner {
       tasks->push_back({x, y, TaskKind::kVisit});
       return;
     }
-    ClusteredRefinement here;  // at most one link or pair: a pair that splits emits none
+    WalkFound here;  // at most one link or pair: a pair that splits emits none
     Walk(x, y, &here, [&](uint32_t a, uint32_t b) { Expand(a, b, levels - 1, tasks, visited); });
     *visited += here.pairs_visited;
-    for (const ClusterLink& l : here.links) tasks->push_back({l.a, l.b, TaskKind::kLink});
+    for (const NodePair& l : here.links) tasks->push_back({l.p, l.q, TaskKind::kLink});
     for (const NodePair& p : here.node_pairs) tasks->push_back({p.p, p.q, TaskKind::kNodePair});
   }
 
@@ -99,7 +116,7 @@ class ClusterRefiner {
   // One step of the walk from the pair (x, y): a link, a surface pair, or
   // nothing; or the pairs of its split, each handed to recurse(a, b).
   template <typename Recurse>
-  void Walk(uint32_t x, uint32_t y, ClusteredRefinement* out, Recurse recurse) {
+  void Walk(uint32_t x, uint32_t y, WalkFound* out, Recurse recurse) {
     ++out->pairs_visited;
     if (x == y) {
       if (!IsCluster(x)) return;  // a planar surface does not see itself
@@ -261,11 +278,11 @@ ClusteredRefinement RefineClusters(const Hierarchy& h, const ClusterTree& tree,
     size_t links_begin, links_end, pairs_begin, pairs_end;
   };
   const int workers = ResolveThreads(threads);
-  std::vector<ClusteredRefinement> found(static_cast<size_t>(workers));
+  std::vector<WalkFound> found(static_cast<size_t>(workers));
   std::vector<Piece> pieces(tasks.size());
   ParallelFor(tasks.size(), workers, [&](size_t k, int worker) {
     const ClusterRefiner::Task& t = tasks[k];
-    ClusteredRefinement& f = found[static_cast<size_t>(worker)];
+    WalkFound& f = found[static_cast<size_t>(worker)];
     Piece& piece = pieces[k];
     piece.worker = worker;
     piece.links_begin = f.links.size();
@@ -285,44 +302,50 @@ ClusteredRefinement RefineClusters(const Hierarchy& h, const ClusterTree& tree,
     piece.pairs_end = f.node_pairs.size();
   });
   size_t links = 0, pairs = 0;
-  for (const ClusteredRefinement& f : found) {
+  for (const WalkFound& f : found) {
     links += f.links.size();
     pairs += f.node_pairs.size();
     out.pairs_visited += f.pairs_visited;
   }
-  out.links.reserve(links);
+  std::vector<NodePair> candidates;
+  candidates.reserve(links);
   out.node_pairs.reserve(pairs);
   for (const Piece& piece : pieces) {
-    const ClusteredRefinement& f = found[static_cast<size_t>(piece.worker)];
-    out.links.insert(out.links.end(), f.links.begin() + static_cast<ptrdiff_t>(piece.links_begin),
-                     f.links.begin() + static_cast<ptrdiff_t>(piece.links_end));
+    const WalkFound& f = found[static_cast<size_t>(piece.worker)];
+    candidates.insert(candidates.end(), f.links.begin() + static_cast<ptrdiff_t>(piece.links_begin),
+                      f.links.begin() + static_cast<ptrdiff_t>(piece.links_end));
     out.node_pairs.insert(out.node_pairs.end(), f.node_pairs.begin() + static_cast<ptrdiff_t>(piece.pairs_begin),
                           f.node_pairs.begin() + static_cast<ptrdiff_t>(piece.pairs_end));
   }
-  std::vector<ClusteredRefinement>().swap(found);
-  std::sort(out.links.begin(), out.links.end(), [](const ClusterLink& x, const ClusterLink& y) {
-    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  std::vector<WalkFound>().swap(found);
+  std::sort(candidates.begin(), candidates.end(), [](const NodePair& x, const NodePair& y) {
+    return x.p != y.p ? x.p < y.p : x.q < y.q;
   });
-  if (progress) progress->Begin("links (clusters)", out.links.size());
-  ParallelFor(out.links.size(), ResolveThreads(threads), [&](size_t k, int) {
-    ClusterLink& l = out.links[k];
-    const Vec3 d = ElementCentre(h, tree, l.b) - ElementCentre(h, tree, l.a);
-    const double r2 = Dot(d, d);
-    l.direction = Normalized(d);
-    const double v = VisibleFraction(h, tree, samples, vis, l.a, l.b);
-    const auto factor = [&](uint32_t from, uint32_t to) {
-      return IsCluster(from) ? v / (kPi * r2) : v * std::max(0.0, SurfaceFactor(h, tree, from, to));
-    };
-    l.a_to_b = factor(l.a, l.b);
-    l.b_to_a = factor(l.b, l.a);
-    if (progress) progress->Advance();
-  });
+  if (progress) progress->Begin("links (clusters)", candidates.size());
+  std::vector<ClusterLink> block;
+  for (size_t begin = 0; begin < candidates.size(); begin += kFactorBlock) {
+    const size_t end = std::min(candidates.size(), begin + kFactorBlock);
+    block.assign(end - begin, ClusterLink{});
+    ParallelFor(end - begin, ResolveThreads(threads), [&](size_t k, int) {
+      ClusterLink& l = block[k];
+      l.a = candidates[begin + k].p;
+      l.b = candidates[begin + k].q;
+      const Vec3 d = ElementCentre(h, tree, l.b) - ElementCentre(h, tree, l.a);
+      const double r2 = Dot(d, d);
+      l.direction = Normalized(d);
+      const double v = VisibleFraction(h, tree, samples, vis, l.a, l.b);
+      const auto factor = [&](uint32_t from, uint32_t to) {
+        return IsCluster(from) ? v / (kPi * r2) : v * std::max(0.0, SurfaceFactor(h, tree, from, to));
+      };
+      l.a_to_b = factor(l.a, l.b);
+      l.b_to_a = factor(l.b, l.a);
+      if (progress) progress->Advance();
+    });
+    // Pairs that no ray joins carry nothing.
+    for (const ClusterLink& l : block)
+      if (l.a_to_b > 0 || l.b_to_a > 0) out.links.push_back(l);
+  }
   if (progress) progress->End();
-  // Pairs that no ray joins carry nothing.
-  out.links.erase(
-      std::remove_if(out.links.begin(), out.links.end(),
-                     [](const ClusterLink& l) { return !(l.a_to_b > 0 || l.b_to_a > 0); }),
-      out.links.end());
   return out;
 }
 

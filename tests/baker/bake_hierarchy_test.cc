@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -290,6 +291,9 @@ TEST(StoredHierarchy, RoundTripKeepsTheSolversNodesAndLinks) {
   Baker baker(scene, Hierarchical());
   relight::Bake bake = baker.Bake();
   bake_test::ExpectHierarchiesEqual(bake.hierarchy, made);  // the baker is deterministic
+  // The Baker handed its stored links to that bake (and freed its solver's
+  // copy before the solves): a second whole bake is refused, not made empty.
+  EXPECT_THROW(baker.Bake(), std::logic_error);
   TempDir dir;
   const relight::Bake read = WriteAndRead(bake, dir.File("cornell.rlb"));
   bake_test::ExpectHierarchiesEqual(read.hierarchy, made);

@@ -162,7 +162,10 @@ class Baker {
   // Part of a bake split over processes (relight/baker/distributed.h): only
   // the luminaires `mine` accepts, in scene order; `whole` adds what the
   // writing process alone needs (the display white, the stored hierarchy).
-  // Bake() is BakePart(every luminaire, true).
+  // Bake() is BakePart(every luminaire, true). A hierarchical bake that
+  // stores its hierarchy (the default) hands the stored links over to its
+  // one whole bake: a second whole bake from the same Baker throws
+  // std::logic_error (the links were freed before the solves, for memory).
   relight::Bake BakePart(const std::function<bool(size_t)>& mine, bool whole);
   // The scene lit by the exact distributions at `settings` (one per luminaire,
   // in scene order), float64, no basis.
