@@ -48,10 +48,11 @@ namespace {
 // What the walk decides, before any ray: candidate links (a, b; a < b) and
 // surface pairs, 8 bytes each. A link's direction and factors (a 48-byte
 // ClusterLink) are made afterwards and kept only where rays join the pair:
-// on the 100k venue's second pass 60 million candidates, 8.7 million kept.
-// Held as ClusterLinks from the start, the candidates took 2.9 GB, twice at
-// the join, and their capacity stayed resident for the rest of the bake
-// (docs/venue.md, "Memory of the cluster walk").
+// on the 100k venue's second pass 50-100 million candidates, 8.7 million
+// kept. Held as ClusterLinks from the start, the candidates took 4.6 GB at
+// the join (the peak of the whole bake), and their array's touched pages
+// stayed resident for the rest of it (docs/venue.md, "Memory of the
+// cluster walk").
 struct WalkFound {
   std::vector<NodePair> links;
   std::vector<NodePair> node_pairs;
