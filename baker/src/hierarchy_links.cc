@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstddef>
 #include <numeric>
 
 #include "parallel_for.h"
@@ -92,44 +91,6 @@ size_t Pair(size_t s, size_t count) {
   return s % count;
 }
 
-
-// One worker's links in fixed chunks of 1 Mi links (56 MB: above glibc's
-// largest mmap threshold, so each chunk is its own mapping, resident only
-// as far as it is filled and handed back to the system when freed). They
-// grow a chunk at a time, and the join frees each chunk as it copies it,
-// so the links are never held much more than once.
-class LinkChunks {
- public:
-  void Append(const std::vector<HierarchyLink>& links) {
-    for (size_t done = 0; done < links.size();) {
-      if (chunks_.empty() || chunks_.back().size() == kChunk) {
-        chunks_.emplace_back();
-        chunks_.back().reserve(kChunk);
-      }
-      std::vector<HierarchyLink>& last = chunks_.back();
-      const size_t take = std::min(kChunk - last.size(), links.size() - done);
-      last.insert(last.end(), links.begin() + static_cast<std::ptrdiff_t>(done),
-                  links.begin() + static_cast<std::ptrdiff_t>(done + take));
-      done += take;
-    }
-    size_ += links.size();
-  }
-  size_t size() const { return size_; }
-  // Appends every link to *out in order; this is then empty.
-  void MoveInto(std::vector<HierarchyLink>* out) {
-    for (std::vector<HierarchyLink>& c : chunks_) {
-      out->insert(out->end(), c.begin(), c.end());
-      std::vector<HierarchyLink>().swap(c);
-    }
-    chunks_.clear();
-    size_ = 0;
-  }
-
- private:
-  static constexpr size_t kChunk = size_t{1} << 20;
-  std::vector<std::vector<HierarchyLink>> chunks_;
-  size_t size_ = 0;
-};
 
 class Refiner {
  public:
@@ -303,27 +264,21 @@ std::vector<HierarchyLink> RefineNodePairs(const Mesh& mesh, const Visibility& v
   for (size_t k = 0; k < pairs.size(); ++k) total_units += units(k);
   if (progress) progress->Begin("links (hierarchical)", total_units);
   const int workers = ResolveThreads(threads);
-  // A pair's links go through the worker's scratch into its chunks: one
-  // vector per worker, grown by doubling, held up to twice its links while
-  // it reallocated and the links twice more while joined, gigabytes on a
-  // venue (docs/venue.md, "Memory in the links phase").
-  std::vector<std::vector<HierarchyLink>> scratch(static_cast<size_t>(workers));
-  std::vector<LinkChunks> per_worker(static_cast<size_t>(workers));
+  std::vector<std::vector<HierarchyLink>> per_worker(static_cast<size_t>(workers));
   ParallelFor(pairs.size(), workers, [&](size_t k, int worker) {
-    std::vector<HierarchyLink>& found = scratch[static_cast<size_t>(worker)];
-    found.clear();
-    refiner.Refine(pairs[k].p, pairs[k].q, &found);
-    per_worker[static_cast<size_t>(worker)].Append(found);
+    refiner.Refine(pairs[k].p, pairs[k].q, &per_worker[static_cast<size_t>(worker)]);
     if (progress) progress->Advance(units(k));
   });
   if (progress) progress->End();
-  scratch = {};
 
   std::vector<HierarchyLink> links;
   size_t count = 0;
-  for (const LinkChunks& w : per_worker) count += w.size();
+  for (const auto& w : per_worker) count += w.size();
   links.reserve(count);
-  for (LinkChunks& w : per_worker) w.MoveInto(&links);
+  for (auto& w : per_worker) {
+    links.insert(links.end(), w.begin(), w.end());
+    std::vector<HierarchyLink>().swap(w);
+  }
   std::sort(links.begin(), links.end(), [](const HierarchyLink& x, const HierarchyLink& y) {
     return x.p != y.p ? x.p < y.p : x.q < y.q;
   });
